@@ -1,0 +1,47 @@
+// Integrators, chosen by name at run time; each works with both motion models.
+#pragma once
+
+#include <Eigen/Core>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "virtual_go/motion_model.h"
+#include "virtual_go/rigid_body_state.h"
+
+namespace virtual_go {
+
+struct MotionSetup {
+  MotionModel model;
+  Eigen::Vector3d gravity_world;  // m/s^2, may be zero
+};
+
+class Integrator {
+ public:
+  explicit Integrator(const MotionSetup& setup);
+  virtual ~Integrator() = default;
+
+  virtual std::string name() const = 0;
+  // Advances `state` by dt seconds (dt > 0, finite). On error throws and leaves state unchanged.
+  void advance(RigidBodyState& state, double dt);
+  // Largest h * |omega| (rad) one step may take; infinity when any step is fine.
+  virtual double max_rotation_per_step() const;
+
+  const MotionSetup& setup() const { return setup_; }
+
+ protected:
+  virtual void step(RigidBodyState& state, double dt) = 0;
+  bool has_gravity() const { return has_gravity_; }
+  // Exact translation under constant gravity: x += v h + g h^2 / 2, v += g h.
+  void translate_exact(RigidBodyState& state, double dt) const;
+
+ private:
+  MotionSetup setup_;
+  bool has_gravity_;
+};
+
+// "euler", "rk4", "splitting", "exact"; throws InvalidArgument for anything else.
+std::unique_ptr<Integrator> make_integrator(const std::string& name, const MotionSetup& setup);
+std::vector<std::string> integrator_names();
+
+}  // namespace virtual_go

@@ -1,0 +1,69 @@
+#!/usr/bin/env bash
+# Installs the Debian packages virtual_go needs (with sudo when not root), then configures and
+# builds the package into build/ (devel space build/devel). Safe to run again: it installs only
+# what is missing and rebuilds incrementally. Sourced by run.sh and test.sh; runnable alone.
+set -euo pipefail
+
+VG_ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+VG_BUILD="${VG_BUILD:-$VG_ROOT/build}"
+
+# Debian 12's system ROS 1 (no /opt/ros) plus the tools the tests use.
+VG_PACKAGES=(
+  build-essential cmake python3 python3-catkin-pkg catkin
+  ros-core-dev libroscpp-dev libtf2-ros-dev libtf2-eigen-dev librosbag-dev librostest-dev
+  python3-rostest python3-rosbag ros-message-generation ros-std-srvs ros-geometry-msgs
+  ros-nav-msgs ros-visualization-msgs libeigen3-dev libgtest-dev
+  rviz tf2-tools xvfb xauth imagemagick gnuplot-nox procps
+)
+
+vg_sudo() {
+  if [ "$(id -u)" -eq 0 ]; then "$@"; else sudo "$@"; fi
+}
+
+vg_install_packages() {
+  local missing=()
+  local p
+  for p in "$@"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+  done
+  if [ ${#missing[@]} -gt 0 ]; then
+    echo "virtual_go: installing ${missing[*]}" >&2
+    vg_sudo env DEBIAN_FRONTEND=noninteractive apt-get update -qq
+    vg_sudo env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends \
+      "${missing[@]}" >&2
+  fi
+}
+
+# catkin needs the system python (another python3 may come first on PATH without catkin_pkg).
+vg_environment() {
+  export PATH="/usr/bin:$PATH"
+  export ROS_HOME="${ROS_HOME:-$VG_BUILD/ros_home}"
+  mkdir -p "$ROS_HOME"
+}
+
+vg_configure_and_build() {
+  vg_environment
+  mkdir -p "$VG_BUILD"
+  cmake -S "$VG_ROOT" -B "$VG_BUILD" -DPYTHON_EXECUTABLE=/usr/bin/python3 \
+    -DCATKIN_ENABLE_TESTING=ON "$@" >"$VG_BUILD/configure.log" 2>&1 || {
+    cat "$VG_BUILD/configure.log" >&2
+    echo "virtual_go: cmake configure failed" >&2
+    return 1
+  }
+  cmake --build "$VG_BUILD" -- -j"$(nproc)"
+}
+
+vg_setup() {
+  vg_install_packages "${VG_PACKAGES[@]}"
+  vg_configure_and_build "$@"
+}
+
+if [ "${BASH_SOURCE[0]}" = "$0" ]; then
+  case "${1:-}" in
+    -h | --help)
+      echo "usage: scripts/setup.sh   install Debian packages (sudo if not root), configure, build"
+      exit 0
+      ;;
+  esac
+  vg_setup
+fi

@@ -1,0 +1,32 @@
+#include "virtual_go/exact_integrator.h"
+
+namespace virtual_go {
+
+ExactIntegrator::ExactIntegrator(const MotionSetup& setup) : Integrator(setup) {
+  // Fail at construction, not at the first step, for an inertia with no closed form here.
+  ExactMotion probe(setup, RigidBodyState{});
+  (void)probe;
+}
+
+void ExactIntegrator::step(RigidBodyState& state, double dt) {
+  if (!anchor_ || dt != last_dt_ || !(state == last_output_)) {
+    // New start, new dt or a state changed from outside: anchor the closed form here and
+    // precompute the two fixed rotations of one step (the only trigonometry until the next).
+    anchor_.emplace(setup(), state);
+    last_dt_ = dt;
+    steps_since_anchor_ = 0;
+    rotating_ = !state.angular_momentum_world.isZero(0.0);
+    left_step_ = anchor_->left_rotation(dt);
+    right_step_ = anchor_->right_rotation(dt);
+  }
+  ++steps_since_anchor_;
+  if (steps_since_anchor_ % kReanchorSteps == 0) {
+    state = anchor_->state_at(static_cast<double>(steps_since_anchor_) * dt);
+  } else {
+    translate_exact(state, dt);
+    if (rotating_) state.orientation = left_step_ * state.orientation * right_step_;
+  }
+  last_output_ = state;
+}
+
+}  // namespace virtual_go

@@ -1,0 +1,59 @@
+#include "virtual_go/integrator.h"
+
+#include <limits>
+
+#include "virtual_go/euler_integrator.h"
+#include "virtual_go/exact_integrator.h"
+#include "virtual_go/rk4_integrator.h"
+#include "virtual_go/splitting_integrator.h"
+#include "virtual_go/validation.h"
+
+namespace virtual_go {
+namespace {
+
+bool all_finite(const RigidBodyState& s) {
+  return s.position_world.allFinite() && s.velocity_world.allFinite() &&
+         s.orientation.coeffs().allFinite() && s.angular_momentum_world.allFinite();
+}
+
+}  // namespace
+
+Integrator::Integrator(const MotionSetup& setup)
+    : setup_(setup), has_gravity_(!setup.gravity_world.isZero(0.0)) {
+  require_finite("gravity", setup.gravity_world);
+}
+
+double Integrator::max_rotation_per_step() const { return std::numeric_limits<double>::infinity(); }
+
+void Integrator::advance(RigidBodyState& state, double dt) {
+  require_positive("dt", dt);
+  RigidBodyState next = state;
+  step(next, dt);
+  if (!all_finite(next)) {
+    state.validated();  // names the bad input field, if the input was the cause
+    throw IntegrationError(name() + ": step of dt " + format_value(dt) +
+                           " s produced a non-finite state");
+  }
+  state = next;
+}
+
+void Integrator::translate_exact(RigidBodyState& state, double dt) const {
+  if (has_gravity_) {
+    state.position_world += dt * state.velocity_world + (0.5 * dt * dt) * setup_.gravity_world;
+    state.velocity_world += dt * setup_.gravity_world;
+  } else if (!state.velocity_world.isZero(0.0)) {
+    state.position_world += dt * state.velocity_world;
+  }
+}
+
+std::unique_ptr<Integrator> make_integrator(const std::string& name, const MotionSetup& setup) {
+  if (name == "euler") return std::make_unique<EulerIntegrator>(setup);
+  if (name == "rk4") return std::make_unique<Rk4Integrator>(setup);
+  if (name == "splitting") return std::make_unique<SplittingIntegrator>(setup);
+  if (name == "exact") return std::make_unique<ExactIntegrator>(setup);
+  throw InvalidArgument("unknown integrator '" + name + "' (known: euler rk4 splitting exact)");
+}
+
+std::vector<std::string> integrator_names() { return {"euler", "rk4", "splitting", "exact"}; }
+
+}  // namespace virtual_go

@@ -1,0 +1,21 @@
+#include "virtual_go/rotation.h"
+
+#include <cmath>
+
+namespace virtual_go {
+
+Eigen::Quaterniond rotation_exp(const Eigen::Vector3d& v) {
+  const double angle = v.norm();
+  if (angle == 0.0) return Eigen::Quaterniond::Identity();
+  const double half = 0.5 * angle;
+  // sin(half)/angle computed directly keeps full relative accuracy for tiny angles.
+  const double s = std::sin(half) / angle;
+  return Eigen::Quaterniond(std::cos(half), s * v.x(), s * v.y(), s * v.z());
+}
+
+double orientation_error(const Eigen::Quaterniond& reference, const Eigen::Quaterniond& q) {
+  const Eigen::Quaterniond d = reference.conjugate() * q;
+  return 2.0 * std::atan2(d.vec().norm(), std::abs(d.w()));
+}
+
+}  // namespace virtual_go

@@ -1,0 +1,52 @@
+#include "virtual_go/validation.h"
+
+#include <cmath>
+#include <sstream>
+
+namespace virtual_go {
+
+std::string format_value(double value) {
+  std::ostringstream out;
+  out.precision(17);
+  out << value;
+  return out.str();
+}
+
+std::string format_vector(const Eigen::Vector3d& v) {
+  return "(" + format_value(v.x()) + ", " + format_value(v.y()) + ", " + format_value(v.z()) + ")";
+}
+
+void require_finite(const std::string& field, double value) {
+  if (!std::isfinite(value)) {
+    throw InvalidArgument(field + " must be finite, got " + format_value(value));
+  }
+}
+
+void require_finite(const std::string& field, const Eigen::Vector3d& v) {
+  if (!v.allFinite()) {
+    throw InvalidArgument(field + " must be finite, got " + format_vector(v));
+  }
+}
+
+void require_positive(const std::string& field, double value) {
+  require_finite(field, value);
+  if (!(value > 0.0)) {
+    throw InvalidArgument(field + " must be positive, got " + format_value(value));
+  }
+}
+
+Eigen::Quaterniond require_unit_quaternion(const std::string& field, const Eigen::Quaterniond& q) {
+  const Eigen::Vector4d c = q.coeffs();
+  const std::string text = "(x " + format_value(c[0]) + ", y " + format_value(c[1]) + ", z " +
+                           format_value(c[2]) + ", w " + format_value(c[3]) + ")";
+  if (!c.allFinite()) {
+    throw InvalidArgument(field + " must be finite, got " + text);
+  }
+  const double norm = c.norm();
+  if (!(norm > 1e-9)) {
+    throw InvalidArgument(field + " must be a non-zero quaternion, got " + text);
+  }
+  return Eigen::Quaterniond(c / norm);
+}
+
+}  // namespace virtual_go
