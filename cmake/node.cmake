@@ -1,0 +1,25 @@
+# The stone node: a ROS-free adapter library (clock, config, requests, simulation; gtested
+# without a master) and the thin ROS layer on top of it.
+include_directories(${catkin_INCLUDE_DIRS})
+
+add_library(virtual_go_sim
+  src/sim/sim_clock.cpp
+  src/sim/stone_config.cpp
+  src/sim/state_request.cpp
+  src/sim/segment_event.cpp
+  src/sim/stone_simulation.cpp)
+target_link_libraries(virtual_go_sim PUBLIC virtual_go_core)
+
+add_executable(stone_node
+  src/stone_node_main.cpp
+  src/ros/stone_node.cpp
+  src/ros/stone_node_help.cpp
+  src/ros/param_reader.cpp
+  src/ros/stone_messages.cpp)
+target_link_libraries(stone_node virtual_go_sim ${catkin_LIBRARIES})
+add_dependencies(stone_node ${${PROJECT_NAME}_EXPORTED_TARGETS} ${catkin_EXPORTED_TARGETS})
+
+install(TARGETS stone_node virtual_go_sim
+  ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
+  LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
+  RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})

@@ -1,0 +1,47 @@
+// Core state -> ROS messages (REP 103 units). Conversions of Eigen types go through tf2_eigen.
+#pragma once
+
+#include <geometry_msgs/Pose.h>
+#include <geometry_msgs/PoseStamped.h>
+#include <geometry_msgs/TransformStamped.h>
+#include <geometry_msgs/Twist.h>
+#include <nav_msgs/Odometry.h>
+#include <ros/time.h>
+#include <visualization_msgs/Marker.h>
+
+#include <cstdint>
+
+#include "virtual_go/StoneEvent.h"
+#include "virtual_go/StoneInfo.h"
+#include "virtual_go/rigid_body.h"
+#include "virtual_go/sim/segment_event.h"
+#include "virtual_go/sim/stone_simulation.h"
+
+namespace virtual_go {
+
+ros::Time to_ros_time(std::int64_t ns);
+
+geometry_msgs::Pose to_pose_msg(const RigidBodyState& state);
+// World-frame twist: linear m/s, angular rad/s.
+geometry_msgs::Twist to_world_twist_msg(const RigidBody& body);
+// Body-frame twist (the nav_msgs/Odometry convention): R^T v and the body angular velocity.
+geometry_msgs::Twist to_body_twist_msg(const RigidBody& body);
+
+geometry_msgs::TransformStamped to_transform_msg(const RigidBodyState& state,
+                                                 const ros::Time& stamp,
+                                                 const std::string& world_frame,
+                                                 const std::string& stone_frame);
+geometry_msgs::PoseStamped to_pose_stamped_msg(const RigidBodyState& state, const ros::Time& stamp,
+                                               const std::string& world_frame);
+nav_msgs::Odometry to_odometry_msg(const RigidBody& body, const ros::Time& stamp,
+                                   const std::string& world_frame, const std::string& stone_frame);
+
+StoneInfo to_info_msg(const StoneSimulation& sim);
+StoneEvent to_event_msg(const SegmentEvent& event, const MotionModel& model,
+                        const std::string& world_frame);
+// The tessellated lens as a TRIANGLE_LIST in the stone frame, locked to it so rviz moves it
+// with tf.
+visualization_msgs::Marker to_marker_msg(const Stone& stone, const std::string& color,
+                                         const std::string& stone_frame);
+
+}  // namespace virtual_go

@@ -1,0 +1,51 @@
+// The ROS adapter around StoneSimulation: parameters in, a timer on ROS time, tf2 and topics
+// out, services in. Single-threaded: construct, then ros::spin().
+#pragma once
+
+#include <ros/ros.h>
+#include <std_srvs/Trigger.h>
+#include <tf2_ros/transform_broadcaster.h>
+
+#include <cstdint>
+#include <string>
+
+#include "virtual_go/SetAngularVelocity.h"
+#include "virtual_go/SetState.h"
+#include "virtual_go/sim/stone_simulation.h"
+
+namespace virtual_go {
+
+// The --help text of stone_node: usage, parameters, topics, services.
+const char* stone_node_help();
+
+class StoneNode {
+ public:
+  // Reads ~ parameters; throws ConfigError naming the bad parameter.
+  StoneNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh);
+
+ private:
+  void on_timer(const ros::TimerEvent& event);
+  void publish_state(std::int64_t stamp_ns);
+  void publish_events(const UpdateResult& result);
+
+  bool on_set_angular_velocity(SetAngularVelocity::Request& request,
+                               SetAngularVelocity::Response& response);
+  bool on_reset(std_srvs::Trigger::Request& request, std_srvs::Trigger::Response& response);
+  bool on_set_state(SetState::Request& request, SetState::Response& response);
+
+  ros::NodeHandle nh_;
+  ros::NodeHandle private_nh_;
+  StoneSimulation sim_;
+  tf2_ros::TransformBroadcaster tf_broadcaster_;
+  ros::Publisher pose_pub_;
+  ros::Publisher odom_pub_;
+  ros::Publisher marker_pub_;
+  ros::Publisher info_pub_;
+  ros::Publisher events_pub_;
+  ros::ServiceServer set_angular_velocity_srv_;
+  ros::ServiceServer reset_srv_;
+  ros::ServiceServer set_state_srv_;
+  ros::Timer timer_;
+};
+
+}  // namespace virtual_go

@@ -1,0 +1,89 @@
+// The stone node without ROS: parameters -> core objects, a simulated clock on a fixed grid of
+// whole nanoseconds, and the changes requested from outside. The node calls update() with ROS
+// time on every timer tick and publishes what it returns.
+#pragma once
+
+#include <cstdint>
+#include <deque>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "virtual_go/integrator.h"
+#include "virtual_go/rigid_body.h"
+#include "virtual_go/sim/segment_event.h"
+#include "virtual_go/sim/sim_clock.h"
+#include "virtual_go/sim/state_request.h"
+#include "virtual_go/sim/stone_config.h"
+#include "virtual_go/stone.h"
+
+namespace virtual_go {
+
+struct UpdateResult {
+  bool advanced = false;             // a new state exists at stamp_ns: publish it
+  std::int64_t stamp_ns = 0;         // simulated time of state()
+  std::vector<SegmentEvent> events;  // new segments started during this update, in order
+  std::string error;  // non-empty when the integrator failed (state kept, not advanced)
+};
+
+class StoneSimulation {
+ public:
+  // Throws ConfigError naming the parameter.
+  explicit StoneSimulation(const StoneConfig& config);
+
+  // Advances to the latest grid time at or before ROS time now_ns (0 = not valid yet).
+  UpdateResult update(std::int64_t now_ns);
+
+  // Requests validate at once (InvalidArgument naming the field; nothing changes) and take
+  // effect at the next grid time, which becomes the first state of a new segment: stamps stay
+  // strictly increasing and the state already published at the current time stays true.
+  void reset();
+  // frame: "" / "world" / world frame id, or "stone" / stone frame id. For rigid_body this sets
+  // L = I w at the instant it takes effect.
+  void set_angular_velocity(const Eigen::Vector3d& omega, const std::string& frame);
+  void set_state(const Eigen::Vector3d& position_world, const Eigen::Vector4d& orientation_xyzw,
+                 const Eigen::Vector3d& velocity_world,
+                 const Eigen::Vector3d& angular_velocity_world);
+
+  const StoneConfig& config() const { return config_; }
+  const Stone& stone() const { return stone_; }
+  const MotionSetup& setup() const { return setup_; }
+  const Integrator& integrator() const { return *integrator_; }
+  std::int64_t dt_ns() const { return clock_.dt_ns(); }
+  const RigidBodyState& initial_state() const { return initial_; }
+  // Simulated time of the initial state (the first valid ROS time seen); 0 before.
+  std::int64_t start_ns() const { return start_ns_; }
+  bool started() const { return clock_.started(); }
+  const RigidBodyState& state() const { return state_; }
+  RigidBody body() const { return RigidBody(setup_.model, state_); }
+  std::int64_t time_ns() const { return clock_.time_ns(); }
+
+ private:
+  struct Change {
+    EventReason reason;
+    RigidBodyState state;   // reset, set_state: the new state
+    Eigen::Vector3d omega;  // set_angular_velocity
+    RequestFrame frame = RequestFrame::world;
+    bool replaces_state() const { return reason != EventReason::set_angular_velocity; }
+  };
+
+  void step(UpdateResult& result);
+  void begin_segment(EventReason reason, std::int64_t stamp_ns, UpdateResult& result);
+  AngularVelocityLimit angular_velocity_limit() const;
+
+  StoneConfig config_;
+  Stone stone_;
+  MotionSetup setup_;
+  std::unique_ptr<Integrator> integrator_;
+  double dt_;  // s, exactly dt_ns * 1e-9 as the integrator sees it
+  std::int64_t auto_reset_ns_;
+  RigidBodyState initial_;
+  SimClock clock_;
+  RigidBodyState state_;
+  std::int64_t start_ns_ = 0;
+  std::int64_t segment_start_ns_ = 0;
+  std::uint32_t segment_ = 0;
+  std::deque<Change> pending_;
+};
+
+}  // namespace virtual_go

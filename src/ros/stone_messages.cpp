@@ -1,0 +1,150 @@
+#include "virtual_go/ros/stone_messages.h"
+
+#include <tf2_eigen/tf2_eigen.h>
+
+#include "virtual_go/triangle_mesh.h"
+
+namespace virtual_go {
+namespace {
+
+geometry_msgs::Vector3 to_vector_msg(const Eigen::Vector3d& v) {
+  geometry_msgs::Vector3 msg;
+  tf2::toMsg(v, msg);
+  return msg;
+}
+
+geometry_msgs::Twist to_twist_msg(const Eigen::Vector3d& linear, const Eigen::Vector3d& angular) {
+  geometry_msgs::Twist msg;
+  msg.linear = to_vector_msg(linear);
+  msg.angular = to_vector_msg(angular);
+  return msg;
+}
+
+}  // namespace
+
+ros::Time to_ros_time(std::int64_t ns) {
+  ros::Time t;
+  t.fromNSec(static_cast<std::uint64_t>(ns));
+  return t;
+}
+
+geometry_msgs::Pose to_pose_msg(const RigidBodyState& state) {
+  // Position and quaternion directly (not via a rotation matrix) so nothing is rounded twice.
+  geometry_msgs::Pose msg;
+  msg.position = tf2::toMsg(state.position_world);
+  msg.orientation = tf2::toMsg(state.orientation);
+  return msg;
+}
+
+geometry_msgs::Twist to_world_twist_msg(const RigidBody& body) {
+  return to_twist_msg(body.state().velocity_world, body.angular_velocity_world());
+}
+
+geometry_msgs::Twist to_body_twist_msg(const RigidBody& body) {
+  return to_twist_msg(body.vector_world_to_body(body.state().velocity_world),
+                      body.angular_velocity_body());
+}
+
+geometry_msgs::TransformStamped to_transform_msg(const RigidBodyState& state,
+                                                 const ros::Time& stamp,
+                                                 const std::string& world_frame,
+                                                 const std::string& stone_frame) {
+  geometry_msgs::TransformStamped msg;
+  msg.header.stamp = stamp;
+  msg.header.frame_id = world_frame;
+  msg.child_frame_id = stone_frame;
+  tf2::toMsg(state.position_world, msg.transform.translation);
+  msg.transform.rotation = tf2::toMsg(state.orientation);
+  return msg;
+}
+
+geometry_msgs::PoseStamped to_pose_stamped_msg(const RigidBodyState& state, const ros::Time& stamp,
+                                               const std::string& world_frame) {
+  geometry_msgs::PoseStamped msg;
+  msg.header.stamp = stamp;
+  msg.header.frame_id = world_frame;
+  msg.pose = to_pose_msg(state);
+  return msg;
+}
+
+nav_msgs::Odometry to_odometry_msg(const RigidBody& body, const ros::Time& stamp,
+                                   const std::string& world_frame, const std::string& stone_frame) {
+  nav_msgs::Odometry msg;
+  msg.header.stamp = stamp;
+  msg.header.frame_id = world_frame;
+  msg.child_frame_id = stone_frame;
+  msg.pose.pose = to_pose_msg(body.state());
+  msg.twist.twist = to_body_twist_msg(body);
+  // Covariances stay zero: the simulated state is known exactly.
+  return msg;
+}
+
+StoneInfo to_info_msg(const StoneSimulation& sim) {
+  const StoneConfig& c = sim.config();
+  const Stone& stone = sim.stone();
+  StoneInfo msg;
+  msg.header.stamp = to_ros_time(sim.start_ns());
+  msg.header.frame_id = c.world_frame;
+  msg.world_frame = c.world_frame;
+  msg.stone_frame = c.stone_frame;
+  msg.width = stone.shape.width();
+  msg.height = stone.shape.height();
+  msg.mass = stone.mass_properties.mass();
+  msg.density = stone.density;
+  msg.principal_moments = to_vector_msg(stone.mass_properties.principal_moments_body());
+  msg.model = motion_model_name(sim.setup().model.kind());
+  msg.integrator = sim.integrator().name();
+  msg.dt_ns = sim.dt_ns();
+  msg.dt = static_cast<double>(sim.dt_ns()) * 1e-9;
+  msg.rate = c.rate;
+  msg.gravity = to_vector_msg(sim.setup().gravity_world);
+  const RigidBody initial(sim.setup().model, sim.initial_state());
+  msg.initial_pose = to_pose_msg(initial.state());
+  msg.initial_twist = to_world_twist_msg(initial);
+  msg.max_angular_velocity = c.max_angular_velocity;
+  msg.auto_reset_period = c.auto_reset_period;
+  return msg;
+}
+
+StoneEvent to_event_msg(const SegmentEvent& event, const MotionModel& model,
+                        const std::string& world_frame) {
+  const RigidBody body(model, event.state);
+  StoneEvent msg;
+  msg.header.stamp = to_ros_time(event.stamp_ns);
+  msg.header.frame_id = world_frame;
+  msg.segment = event.segment;
+  msg.reason = event_reason_name(event.reason);
+  msg.pose = to_pose_msg(event.state);
+  msg.twist = to_world_twist_msg(body);
+  msg.angular_momentum = to_vector_msg(event.state.angular_momentum_world);
+  return msg;
+}
+
+visualization_msgs::Marker to_marker_msg(const Stone& stone, const std::string& color,
+                                         const std::string& stone_frame) {
+  // Fine enough that the silhouette looks round at the default camera distance.
+  const TriangleMesh mesh = tessellate_lens(stone.shape, 64, 8);
+  visualization_msgs::Marker msg;
+  msg.header.frame_id = stone_frame;
+  msg.header.stamp = ros::Time();  // zero: rviz uses the latest transform of the stone frame
+  msg.frame_locked = true;
+  msg.ns = "stone";
+  msg.id = 0;
+  msg.type = visualization_msgs::Marker::TRIANGLE_LIST;
+  msg.action = visualization_msgs::Marker::ADD;
+  msg.pose.orientation.w = 1.0;
+  msg.scale.x = msg.scale.y = msg.scale.z = 1.0;
+  // Slate black and shell white, slightly off the extremes so rviz shading stays visible.
+  const bool black = color == "black";
+  msg.color.r = black ? 0.06f : 0.93f;
+  msg.color.g = black ? 0.06f : 0.93f;
+  msg.color.b = black ? 0.07f : 0.90f;
+  msg.color.a = 1.0f;
+  msg.points.reserve(mesh.triangles.size() * 3);
+  for (const auto& triangle : mesh.triangles) {
+    for (const int index : triangle) msg.points.push_back(tf2::toMsg(mesh.vertices[index]));
+  }
+  return msg;
+}
+
+}  // namespace virtual_go

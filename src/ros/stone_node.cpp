@@ -1,0 +1,144 @@
+#include "virtual_go/ros/stone_node.h"
+
+#include <tf2_eigen/tf2_eigen.h>
+
+#include "virtual_go/ros/param_reader.h"
+#include "virtual_go/ros/stone_messages.h"
+
+namespace virtual_go {
+namespace {
+
+Eigen::Vector3d to_eigen(const geometry_msgs::Vector3& v) {
+  Eigen::Vector3d out;
+  tf2::fromMsg(v, out);
+  return out;
+}
+
+Eigen::Vector3d to_eigen(const geometry_msgs::Point& p) {
+  Eigen::Vector3d out;
+  tf2::fromMsg(p, out);
+  return out;
+}
+
+Eigen::Vector4d to_xyzw(const geometry_msgs::Quaternion& q) {
+  return Eigen::Vector4d(q.x, q.y, q.z, q.w);
+}
+
+// Runs a request; a rejection becomes success false with the reason, the state untouched.
+template <class Response, class Request>
+void answer(const char* service, const Request& request, Response& response) {
+  try {
+    request();
+    response.success = true;
+    response.message = "applied at the next physics step";
+  } catch (const InvalidArgument& e) {
+    response.success = false;
+    response.message = e.what();
+    ROS_WARN("stone_node: %s refused: %s", service, e.what());
+  }
+}
+
+StoneConfig read_config(const ros::NodeHandle& private_nh) {
+  for (const std::string& name : unknown_parameters(private_nh)) {
+    ROS_WARN("ignoring unknown parameter ~%s (see stone_node --help)", name.c_str());
+  }
+  return read_stone_config(private_nh);
+}
+
+}  // namespace
+
+StoneNode::StoneNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh)
+    : nh_(nh), private_nh_(private_nh), sim_(read_config(private_nh)) {
+  const StoneConfig& c = sim_.config();
+  if (c.rate * c.dt > 1.0) {
+    ROS_WARN(
+        "~rate %g Hz is faster than the physics step ~dt %g s: ticks without a new step "
+        "publish nothing",
+        c.rate, c.dt);
+  }
+  pose_pub_ = private_nh_.advertise<geometry_msgs::PoseStamped>("pose", 10);
+  odom_pub_ = private_nh_.advertise<nav_msgs::Odometry>("odom", 10);
+  // Latched: late subscribers (rviz, rosbag record, tools) still get the shape, the
+  // configuration and the latest segment start.
+  marker_pub_ = private_nh_.advertise<visualization_msgs::Marker>("marker", 1, true);
+  info_pub_ = private_nh_.advertise<StoneInfo>("info", 1, true);
+  events_pub_ = private_nh_.advertise<StoneEvent>("events", 10, true);
+  marker_pub_.publish(to_marker_msg(sim_.stone(), c.color, c.stone_frame));
+
+  set_angular_velocity_srv_ = private_nh_.advertiseService(
+      "set_angular_velocity", &StoneNode::on_set_angular_velocity, this);
+  reset_srv_ = private_nh_.advertiseService("reset", &StoneNode::on_reset, this);
+  set_state_srv_ = private_nh_.advertiseService("set_state", &StoneNode::on_set_state, this);
+
+  // On ROS time, so use_sim_time and /clock drive it too.
+  timer_ = nh_.createTimer(ros::Duration(1.0 / c.rate), &StoneNode::on_timer, this);
+  ROS_INFO("stone_node: %s model, %s integrator, dt %lld ns, %g Hz, frames %s -> %s",
+           c.model.c_str(), c.integrator.c_str(), static_cast<long long>(sim_.dt_ns()), c.rate,
+           c.world_frame.c_str(), c.stone_frame.c_str());
+}
+
+void StoneNode::on_timer(const ros::TimerEvent&) {
+  const std::int64_t now_ns = static_cast<std::int64_t>(ros::Time::now().toNSec());
+  const UpdateResult result = sim_.update(now_ns);
+  if (!result.error.empty()) {
+    ROS_ERROR_THROTTLE(1.0, "stone_node: physics step failed, state held at %.9f s: %s",
+                       static_cast<double>(result.stamp_ns) * 1e-9, result.error.c_str());
+  }
+  for (const SegmentEvent& event : result.events) {
+    if (event.reason == EventReason::time_jump) {
+      ROS_WARN("stone_node: ROS time jumped to %.9f s; the stone continues from there",
+               static_cast<double>(event.stamp_ns) * 1e-9);
+    }
+    if (event.reason == EventReason::start) info_pub_.publish(to_info_msg(sim_));
+  }
+  publish_events(result);
+  // Only a state that advanced is published: each stamp appears once (no TF_REPEATED_DATA).
+  if (result.advanced) publish_state(result.stamp_ns);
+}
+
+void StoneNode::publish_events(const UpdateResult& result) {
+  for (const SegmentEvent& event : result.events) {
+    events_pub_.publish(to_event_msg(event, sim_.setup().model, sim_.config().world_frame));
+  }
+}
+
+void StoneNode::publish_state(std::int64_t stamp_ns) {
+  const StoneConfig& c = sim_.config();
+  const RigidBodyState& state = sim_.state();
+  const ros::Time stamp = to_ros_time(stamp_ns);
+  tf_broadcaster_.sendTransform(to_transform_msg(state, stamp, c.world_frame, c.stone_frame));
+  if (pose_pub_.getNumSubscribers() > 0) {
+    pose_pub_.publish(to_pose_stamped_msg(state, stamp, c.world_frame));
+  }
+  if (odom_pub_.getNumSubscribers() > 0) {
+    odom_pub_.publish(to_odometry_msg(sim_.body(), stamp, c.world_frame, c.stone_frame));
+  }
+}
+
+bool StoneNode::on_set_angular_velocity(SetAngularVelocity::Request& request,
+                                        SetAngularVelocity::Response& response) {
+  answer(
+      "set_angular_velocity",
+      [&] { sim_.set_angular_velocity(to_eigen(request.angular_velocity), request.frame); },
+      response);
+  return true;
+}
+
+bool StoneNode::on_reset(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response) {
+  answer(
+      "reset", [&] { sim_.reset(); }, response);
+  return true;
+}
+
+bool StoneNode::on_set_state(SetState::Request& request, SetState::Response& response) {
+  answer(
+      "set_state",
+      [&] {
+        sim_.set_state(to_eigen(request.pose.position), to_xyzw(request.pose.orientation),
+                       to_eigen(request.twist.linear), to_eigen(request.twist.angular));
+      },
+      response);
+  return true;
+}
+
+}  // namespace virtual_go

@@ -1,0 +1,105 @@
+#include "virtual_go/sim/stone_config.h"
+
+#include <cmath>
+
+#include "virtual_go/integrator.h"
+#include "virtual_go/motion_model.h"
+
+namespace virtual_go {
+namespace {
+
+[[noreturn]] void fail(const std::string& param, const std::string& problem) {
+  throw ConfigError("~" + param + ": " + problem);
+}
+
+void require_positive_param(const std::string& param, double value, const std::string& unit) {
+  if (!std::isfinite(value) || !(value > 0.0)) {
+    fail(param, "must be a positive finite number (" + unit + "), got " + format_value(value));
+  }
+}
+
+void require_finite_param(const std::string& param, const Eigen::Vector3d& value) {
+  if (!value.allFinite()) fail(param, "must be finite, got " + format_vector(value));
+}
+
+void check_frame(const std::string& param, const std::string& frame) {
+  if (frame.empty()) fail(param, "must not be empty");
+  // tf2 refuses frame ids with a leading slash.
+  if (frame[0] == '/') fail(param, "must not start with '/', got '" + frame + "'");
+}
+
+}  // namespace
+
+std::int64_t dt_to_ns(double dt) {
+  require_positive_param("dt", dt, "s");
+  const double ns = dt * 1e9;
+  if (ns > 1e15) fail("dt", "is too large: " + format_value(dt) + " s");
+  const double whole = std::round(ns);
+  if (std::abs(ns - whole) > 1e-6) {
+    fail("dt", "must be a whole number of nanoseconds (stamps are whole nanoseconds), got " +
+                   format_value(dt) + " s = " + format_value(ns) + " ns; try " +
+                   format_value(whole * 1e-9) + " s");
+  }
+  const auto dt_ns = static_cast<std::int64_t>(whole);
+  if (dt_ns < kMinDtNs) {
+    fail("dt", "must be at least " + format_value(kMinDtNs * 1e-9) + " s, got " + format_value(dt) +
+                   " s");
+  }
+  return dt_ns;
+}
+
+void validate_config(const StoneConfig& c) {
+  require_positive_param("rate", c.rate, "Hz");
+  dt_to_ns(c.dt);
+  try {
+    motion_model_from_name(c.model);
+  } catch (const InvalidArgument& e) {
+    fail("model", e.what());
+  }
+  bool known_integrator = false;
+  for (const std::string& name : integrator_names()) known_integrator |= name == c.integrator;
+  if (!known_integrator) {
+    std::string known;
+    for (const std::string& name : integrator_names()) known += " " + name;
+    fail("integrator", "unknown integrator '" + c.integrator + "' (known:" + known + ")");
+  }
+  require_finite_param("gravity", c.gravity);
+  if (c.stone.size_number) {
+    try {
+      StoneShape::thickness_for_size(*c.stone.size_number);
+    } catch (const InvalidArgument& e) {
+      fail("stone/size", e.what());
+    }
+  }
+  require_positive_param("stone/width", c.stone.width, "m");
+  if (c.stone.height) require_positive_param("stone/height", *c.stone.height, "m");
+  try {
+    material_density(c.stone.material);
+  } catch (const InvalidArgument& e) {
+    fail("stone/material", e.what());
+  }
+  if (c.stone.density) require_positive_param("stone/density", *c.stone.density, "kg/m^3");
+  if (c.stone.mass) require_positive_param("stone/mass", *c.stone.mass, "kg");
+  try {
+    make_stone(c.stone);
+  } catch (const InvalidArgument& e) {
+    // Only the combination can be wrong here (height >= width).
+    fail(c.stone.height ? "stone/height" : "stone/size", e.what());
+  }
+  if (c.color != "black" && c.color != "white") {
+    fail("stone/color", "must be 'black' or 'white', got '" + c.color + "'");
+  }
+  require_positive_param("max_angular_velocity", c.max_angular_velocity, "rad/s");
+  if (!std::isfinite(c.auto_reset_period) || c.auto_reset_period < 0.0 ||
+      c.auto_reset_period > 1e6) {
+    fail("auto_reset_period",
+         "must be between 0 (never) and 1e6 s, got " + format_value(c.auto_reset_period));
+  }
+  check_frame("world_frame", c.world_frame);
+  check_frame("stone_frame", c.stone_frame);
+  if (c.world_frame == c.stone_frame) {
+    fail("stone_frame", "must differ from ~world_frame, both are '" + c.world_frame + "'");
+  }
+}
+
+}  // namespace virtual_go

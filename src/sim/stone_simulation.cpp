@@ -1,0 +1,137 @@
+#include "virtual_go/sim/stone_simulation.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace virtual_go {
+namespace {
+
+constexpr std::int64_t kMaxLagNs = 1000000000;  // 1 s behind ROS time: skip rather than catch up
+
+Stone checked_stone(const StoneConfig& config) {
+  validate_config(config);  // before any core object is built from it
+  return make_stone(config.stone);
+}
+
+}  // namespace
+
+StoneSimulation::StoneSimulation(const StoneConfig& config)
+    : config_(config),
+      stone_(checked_stone(config)),
+      setup_{MotionModel(motion_model_from_name(config.model), stone_.mass_properties),
+             config.gravity},
+      integrator_(make_integrator(config.integrator, setup_)),
+      dt_(static_cast<double>(dt_to_ns(config.dt)) * 1e-9),
+      auto_reset_ns_(std::llround(config.auto_reset_period * 1e9)),
+      clock_(dt_to_ns(config.dt), std::max(kMaxLagNs, 2 * dt_to_ns(config.dt))) {
+  try {
+    initial_ = state_from_request({"~initial/position", "~initial/orientation", "~initial/velocity",
+                                   "~initial/angular_velocity"},
+                                  setup_.model, config.initial_position, config.initial_orientation,
+                                  config.initial_velocity, config.initial_angular_velocity,
+                                  angular_velocity_limit());
+  } catch (const InvalidArgument& e) {
+    throw ConfigError(e.what());
+  }
+  state_ = initial_;
+}
+
+AngularVelocityLimit StoneSimulation::angular_velocity_limit() const {
+  return {config_.max_angular_velocity, integrator_->max_rotation_per_step(), dt_,
+          integrator_->name()};
+}
+
+void StoneSimulation::reset() { pending_.push_back({EventReason::reset, initial_, {}, {}}); }
+
+void StoneSimulation::set_angular_velocity(const Eigen::Vector3d& omega, const std::string& frame) {
+  const RequestFrame f = request_frame("frame", frame, config_.world_frame, config_.stone_frame);
+  check_angular_velocity("angular_velocity", omega, angular_velocity_limit());
+  pending_.push_back({EventReason::set_angular_velocity, {}, omega, f});
+}
+
+void StoneSimulation::set_state(const Eigen::Vector3d& position_world,
+                                const Eigen::Vector4d& orientation_xyzw,
+                                const Eigen::Vector3d& velocity_world,
+                                const Eigen::Vector3d& angular_velocity_world) {
+  const RigidBodyState s =
+      state_from_request({"pose.position", "pose.orientation", "twist.linear", "twist.angular"},
+                         setup_.model, position_world, orientation_xyzw, velocity_world,
+                         angular_velocity_world, angular_velocity_limit());
+  pending_.push_back({EventReason::set_state, s, {}, {}});
+}
+
+void StoneSimulation::begin_segment(EventReason reason, std::int64_t stamp_ns,
+                                    UpdateResult& result) {
+  if (reason != EventReason::start) ++segment_;
+  segment_start_ns_ = stamp_ns;
+  result.events.push_back({stamp_ns, segment_, reason, state_});
+}
+
+UpdateResult StoneSimulation::update(std::int64_t now_ns) {
+  UpdateResult result;
+  const SimClock::Plan plan = clock_.plan(now_ns);
+  switch (plan.action) {
+    case SimClock::Action::wait:
+      return result;
+    case SimClock::Action::start:
+      clock_.restart(now_ns);
+      start_ns_ = now_ns;
+      state_ = initial_;
+      begin_segment(EventReason::start, now_ns, result);
+      break;
+    case SimClock::Action::jump_back:
+    case SimClock::Action::jump_forward:
+      // The state keeps going from where it was, but on the new time line: a new segment,
+      // and nothing stamped on the old one is published again.
+      clock_.restart(now_ns);
+      begin_segment(EventReason::time_jump, now_ns, result);
+      break;
+    case SimClock::Action::advance:
+      for (std::int64_t i = 0; i < plan.steps; ++i) {
+        try {
+          step(result);
+        } catch (const IntegrationError& e) {
+          result.error = e.what();
+          break;
+        }
+        result.advanced = true;
+      }
+      result.stamp_ns = clock_.time_ns();
+      return result;
+  }
+  result.advanced = true;
+  result.stamp_ns = clock_.time_ns();
+  return result;
+}
+
+void StoneSimulation::step(UpdateResult& result) {
+  const std::int64_t next_ns = clock_.next_time_ns();
+  const bool auto_reset = auto_reset_ns_ > 0 && next_ns - segment_start_ns_ >= auto_reset_ns_;
+  RigidBodyState next = state_;
+  // A change that replaces the whole state makes integrating this step pointless, and lets a
+  // reset recover from a state the integrator cannot handle.
+  const bool replaced = auto_reset || (!pending_.empty() && pending_.front().replaces_state());
+  if (!replaced) integrator_->advance(next, dt_);  // throws with nothing changed
+
+  clock_.step();
+  state_ = next;
+  if (auto_reset) {
+    state_ = initial_;
+    begin_segment(EventReason::auto_reset, next_ns, result);
+  }
+  while (!pending_.empty()) {
+    const Change change = pending_.front();
+    pending_.pop_front();
+    if (change.replaces_state()) {
+      state_ = change.state;
+    } else {
+      const Eigen::Vector3d omega_world = change.frame == RequestFrame::body
+                                              ? Eigen::Vector3d(state_.orientation * change.omega)
+                                              : change.omega;
+      state_ = with_angular_velocity_world(setup_.model, state_, omega_world);
+    }
+    begin_segment(change.reason, next_ns, result);
+  }
+}
+
+}  // namespace virtual_go

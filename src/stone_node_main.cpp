@@ -1,0 +1,25 @@
+// stone_node: the Go stone simulator as a ROS node (see stone_node --help).
+#include <ros/ros.h>
+
+#include <cstdio>
+#include <cstring>
+
+#include "virtual_go/ros/stone_node.h"
+
+int main(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i) {
+    if (std::strcmp(argv[i], "-h") == 0 || std::strcmp(argv[i], "--help") == 0) {
+      std::fputs(virtual_go::stone_node_help(), stdout);
+      return 0;
+    }
+  }
+  ros::init(argc, argv, "stone");
+  try {
+    virtual_go::StoneNode node(ros::NodeHandle(), ros::NodeHandle("~"));
+    ros::spin();
+  } catch (const virtual_go::ConfigError& e) {
+    ROS_FATAL("stone_node: invalid parameter %s", e.what());
+    return 1;
+  }
+  return 0;
+}
