@@ -1,0 +1,71 @@
+// Parameter validation: every bad parameter is refused with its name in the message.
+#include "virtual_go/sim/stone_config.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <limits>
+
+namespace vg = virtual_go;
+
+namespace {
+
+const double kNaN = std::numeric_limits<double>::quiet_NaN();
+const double kInf = std::numeric_limits<double>::infinity();
+
+// Expects validate_config to refuse the config with a message starting "~param:".
+void expect_refused(const std::string& param, const std::function<void(vg::StoneConfig&)>& edit) {
+  vg::StoneConfig config;
+  edit(config);
+  try {
+    vg::validate_config(config);
+    ADD_FAILURE() << "~" << param << " was accepted";
+  } catch (const vg::ConfigError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("~" + param + ":", 0), 0u) << e.what();
+  }
+}
+
+}  // namespace
+
+TEST(StoneConfig, DefaultsAreValid) { EXPECT_NO_THROW(vg::validate_config(vg::StoneConfig())); }
+
+TEST(StoneConfig, DtMustBeAWholeNumberOfNanoseconds) {
+  EXPECT_EQ(vg::dt_to_ns(0.001), 1000000);
+  EXPECT_EQ(vg::dt_to_ns(0.001666666), 1666666);  // 0.001666666 s
+  EXPECT_EQ(vg::dt_to_ns(0.000001), 1000);
+  try {
+    vg::dt_to_ns(1.0 / 1024);  // 976562.5 ns
+    ADD_FAILURE() << "half a nanosecond accepted";
+  } catch (const vg::ConfigError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("~dt"), std::string::npos) << message;
+    EXPECT_NE(message.find("whole number of nanoseconds"), std::string::npos) << message;
+  }
+  for (double bad : {0.0, -0.001, kNaN, kInf, 1e-7}) {
+    EXPECT_THROW(vg::dt_to_ns(bad), vg::ConfigError) << bad;
+  }
+}
+
+TEST(StoneConfig, EachBadParameterIsNamed) {
+  expect_refused("rate", [](vg::StoneConfig& c) { c.rate = 0.0; });
+  expect_refused("rate", [](vg::StoneConfig& c) { c.rate = kNaN; });
+  expect_refused("dt", [](vg::StoneConfig& c) { c.dt = 1.0 / 3000.0; });
+  expect_refused("model", [](vg::StoneConfig& c) { c.model = "newtonian"; });
+  expect_refused("integrator", [](vg::StoneConfig& c) { c.integrator = "verlet"; });
+  expect_refused("gravity", [](vg::StoneConfig& c) { c.gravity.x() = kInf; });
+  expect_refused("stone/size", [](vg::StoneConfig& c) { c.stone.size_number = 29; });
+  expect_refused("stone/width", [](vg::StoneConfig& c) { c.stone.width = -0.022; });
+  expect_refused("stone/height", [](vg::StoneConfig& c) { c.stone.height = 0.0; });
+  expect_refused("stone/height", [](vg::StoneConfig& c) { c.stone.height = 0.03; });
+  expect_refused("stone/material", [](vg::StoneConfig& c) { c.stone.material = "plastic"; });
+  expect_refused("stone/density", [](vg::StoneConfig& c) { c.stone.density = kNaN; });
+  expect_refused("stone/mass", [](vg::StoneConfig& c) { c.stone.mass = 0.0; });
+  expect_refused("stone/color", [](vg::StoneConfig& c) { c.color = "green"; });
+  expect_refused("max_angular_velocity", [](vg::StoneConfig& c) { c.max_angular_velocity = -1; });
+  expect_refused("auto_reset_period", [](vg::StoneConfig& c) { c.auto_reset_period = -0.5; });
+  expect_refused("auto_reset_period", [](vg::StoneConfig& c) { c.auto_reset_period = kInf; });
+  expect_refused("world_frame", [](vg::StoneConfig& c) { c.world_frame = ""; });
+  expect_refused("stone_frame", [](vg::StoneConfig& c) { c.stone_frame = "/stone"; });
+  expect_refused("stone_frame", [](vg::StoneConfig& c) { c.stone_frame = "world"; });
+}
