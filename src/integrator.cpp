@@ -27,6 +27,12 @@ double Integrator::max_rotation_per_step() const { return std::numeric_limits<do
 
 void Integrator::advance(RigidBodyState& state, double dt) {
   require_positive("dt", dt);
+  // Check the input before stepping: a zero quaternion would otherwise pass through a step
+  // unchanged (normalising zero leaves zero) and come out finite. The cheap test runs every
+  // step; validated() only runs to build the message.
+  if (!all_finite(state) || !(state.orientation.coeffs().squaredNorm() > 1e-18)) {
+    state.validated();
+  }
   RigidBodyState next = state;
   step(next, dt);
   if (!all_finite(next)) {

@@ -1,14 +1,21 @@
 #include "virtual_go/validation.h"
 
 #include <cmath>
+#include <cstdlib>
 #include <sstream>
 
 namespace virtual_go {
 
 std::string format_value(double value) {
+  // The shortest precision that reads back as the same double, so that 0.009 prints as given
+  // and not as 0.0089999999999999993; 17 digits always round-trip.
   std::ostringstream out;
-  out.precision(17);
-  out << value;
+  for (int precision = 15; precision <= 17; ++precision) {
+    out.str("");
+    out.precision(precision);
+    out << value;
+    if (std::strtod(out.str().c_str(), nullptr) == value) break;
+  }
   return out.str();
 }
 
@@ -37,14 +44,17 @@ void require_positive(const std::string& field, double value) {
 
 Eigen::Quaterniond require_unit_quaternion(const std::string& field, const Eigen::Quaterniond& q) {
   const Eigen::Vector4d c = q.coeffs();
-  const std::string text = "(x " + format_value(c[0]) + ", y " + format_value(c[1]) + ", z " +
-                           format_value(c[2]) + ", w " + format_value(c[3]) + ")";
+  // The message text is built only on failure: this check runs on every validated state.
+  auto text = [&c] {
+    return "(x " + format_value(c[0]) + ", y " + format_value(c[1]) + ", z " + format_value(c[2]) +
+           ", w " + format_value(c[3]) + ")";
+  };
   if (!c.allFinite()) {
-    throw InvalidArgument(field + " must be finite, got " + text);
+    throw InvalidArgument(field + " must be finite, got " + text());
   }
   const double norm = c.norm();
   if (!(norm > 1e-9)) {
-    throw InvalidArgument(field + " must be a non-zero quaternion, got " + text);
+    throw InvalidArgument(field + " must be a non-zero quaternion, got " + text());
   }
   return Eigen::Quaterniond(c / norm);
 }
