@@ -1,0 +1,28 @@
+# bag_report: inspects rosbags of the stone node (docs/recording.md). Included by CMakeLists.txt.
+# The analysis (stamps, segments, prediction, checks, output) and the rosbag reader form a
+# library so the tests can call them directly; main() only wires them together.
+include_directories(${catkin_INCLUDE_DIRS})
+
+add_library(virtual_go_bag_report
+  src/bag_report_stamps.cpp
+  src/bag_report_physics.cpp
+  src/bag_report_thresholds.cpp
+  src/bag_report_options.cpp
+  src/bag_report_output.cpp
+  src/bag_report_reader.cpp)
+target_include_directories(virtual_go_bag_report PUBLIC include ${catkin_INCLUDE_DIRS}
+  ${CATKIN_DEVEL_PREFIX}/${CATKIN_GLOBAL_INCLUDE_DESTINATION})
+target_link_libraries(virtual_go_bag_report PUBLIC ${catkin_LIBRARIES} virtual_go_core)
+# The reader includes the generated virtual_go/StoneInfo.h and StoneEvent.h.
+add_dependencies(virtual_go_bag_report ${${PROJECT_NAME}_EXPORTED_TARGETS}
+  ${catkin_EXPORTED_TARGETS})
+
+add_executable(bag_report src/bag_report_main.cpp)
+target_link_libraries(bag_report virtual_go_bag_report)
+set_target_properties(bag_report PROPERTIES
+  RUNTIME_OUTPUT_DIRECTORY ${CATKIN_DEVEL_PREFIX}/${CATKIN_PACKAGE_BIN_DESTINATION})
+
+install(TARGETS virtual_go_bag_report bag_report
+  ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
+  LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
+  RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})

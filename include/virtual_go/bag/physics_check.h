@@ -1,0 +1,78 @@
+// Physics health of a recorded run: splits ~odom into segments at each ~events message, then
+// compares every sample with the exact closed form started from the segment's first state and
+// tracks the invariants (|q|, energy, world angular momentum).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "virtual_go/bag/recording.h"
+#include "virtual_go/motion_model.h"
+#include "virtual_go/rigid_body_state.h"
+
+namespace virtual_go {
+namespace bag {
+
+// Which odom samples belong to one segment and where its prediction starts.
+struct SegmentPlan {
+  std::string reason;           // the event's reason, or "first odom" without an event
+  bool from_event = false;      // true: starts at events[event_index], else at odom[first]
+  std::size_t event_index = 0;  // valid when from_event
+  std::int64_t start_ns = 0;    // sim time of the segment's first state
+  std::size_t first = 0;        // odom samples [first, end) belong to this segment
+  std::size_t end = 0;
+};
+
+// odom and events in bag order. A sample belongs to the latest event at or before its stamp;
+// after a backwards jump of the stamps the next event (a time_jump) starts the new segment.
+// Samples before any event, or stamps that go backwards without an event, start a segment at
+// that sample. Events without samples (for instance after the last odom) are kept, empty.
+std::vector<SegmentPlan> plan_segments(const std::vector<OdomSample>& odom,
+                                       const std::vector<SegmentEvent>& events);
+
+// The recorded state of one odom sample: body twist -> world, L from omega via the model.
+RigidBodyState state_from_odom(const MotionModel& model, const OdomSample& sample);
+RigidBodyState state_from_event(const SegmentEvent& event);
+
+// The motion model that ~info describes; throws InvalidArgument naming a bad field.
+MotionModel model_from_info(const RecordingInfo& info);
+
+struct PhysicsSample {
+  std::size_t segment = 0;
+  std::int64_t stamp_ns = 0;
+  double t_s = 0.0;                // since the segment's start
+  double quat_norm_error = 0.0;    // | |q| - 1 | of the recorded quaternion
+  double energy_drift = 0.0;       // |E - E0| / energy scale of the segment
+  double momentum_drift = 0.0;     // |L - L0| / |L0| (world frame)
+  double orientation_error = 0.0;  // rad vs the closed form; NaN when there is no prediction
+  double position_error = 0.0;     // m vs the closed form; NaN when there is no prediction
+  double angular_speed = 0.0;      // |omega|, rad/s
+};
+
+struct SegmentResult {
+  SegmentPlan plan;
+  bool predicted = false;  // false: the closed form does not apply (note says why)
+  std::string note;
+  std::size_t samples = 0;
+  double duration_s = 0.0;  // last sample's t_s
+  double max_angular_speed = 0.0;
+  double max_abs_position = 0.0;  // m, largest |x| seen (scales the round-off allowance)
+  double max_quat_norm_error = 0.0;
+  double max_energy_drift = 0.0;
+  double max_momentum_drift = 0.0;
+  double max_orientation_error = 0.0;
+  double max_position_error = 0.0;
+};
+
+struct PhysicsResult {
+  std::vector<SegmentResult> segments;
+  std::vector<PhysicsSample> samples;  // in odom order
+};
+
+// Throws InvalidArgument when ~info cannot describe a motion model (the message says which field).
+PhysicsResult check_physics(const RecordingInfo& info, const std::vector<OdomSample>& odom,
+                            const std::vector<SegmentEvent>& events);
+
+}  // namespace bag
+}  // namespace virtual_go

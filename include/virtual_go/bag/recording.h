@@ -1,0 +1,75 @@
+// What bag_report reads from a bag, as plain data (no ROS types), so the analysis can be unit
+// tested without rosbag or a master. Times are integer nanoseconds, as in the message stamps.
+#pragma once
+
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace virtual_go {
+namespace bag {
+
+// The stamps of one topic (or of one tf frame pair), in the order the bag holds them.
+struct TopicStamps {
+  std::string topic;     // "/stone/odom", or "/tf world->stone" for one frame pair of /tf
+  std::string datatype;  // "nav_msgs/Odometry"
+  std::vector<std::int64_t> stamps_ns;
+  bool header_stamps = true;  // false: no header, the bag's receipt time is used instead
+  bool aperiodic = false;     // latched or event topics: no rate, period or gap figures
+  bool at_node_rate = false;  // published by the node on every tick (~pose, ~odom, tf)
+};
+
+// virtual_go/StoneInfo, the part the physics check needs.
+struct RecordingInfo {
+  std::string topic;
+  std::int64_t stamp_ns = 0;
+  std::string world_frame = "world";
+  std::string stone_frame = "stone";
+  double mass = 0.0;                                            // kg
+  Eigen::Vector3d principal_moments = Eigen::Vector3d::Zero();  // kg m^2, body x, y, z
+  std::string model;                                            // constant_omega | rigid_body
+  std::string integrator;                                       // euler | rk4 | splitting | exact
+  double dt = 0.0;                                              // s
+  std::int64_t dt_ns = 0;
+  double rate = 0.0;  // Hz
+  Eigen::Vector3d gravity = Eigen::Vector3d::Zero();
+};
+
+// One nav_msgs/Odometry as recorded: pose in the world, twist in the stone (body) frame.
+struct OdomSample {
+  std::int64_t stamp_ns = 0;
+  Eigen::Vector3d position_world = Eigen::Vector3d::Zero();
+  Eigen::Quaterniond orientation_raw = Eigen::Quaterniond::Identity();  // not normalised
+  Eigen::Vector3d velocity_body = Eigen::Vector3d::Zero();
+  Eigen::Vector3d angular_velocity_body = Eigen::Vector3d::Zero();
+};
+
+// One virtual_go/StoneEvent: the first state of a segment, world frame.
+struct SegmentEvent {
+  std::int64_t stamp_ns = 0;
+  std::uint32_t segment = 0;
+  std::string reason;
+  Eigen::Vector3d position_world = Eigen::Vector3d::Zero();
+  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
+  Eigen::Vector3d velocity_world = Eigen::Vector3d::Zero();
+  Eigen::Vector3d angular_momentum_world = Eigen::Vector3d::Zero();
+};
+
+struct Recording {
+  std::string path;
+  std::size_t message_count = 0;
+  double bag_duration_s = 0.0;  // receipt time, last - first
+  std::vector<TopicStamps> topics;
+  std::optional<RecordingInfo> info;
+  std::string odom_topic;    // empty when none was found
+  std::string events_topic;  // empty when none was found
+  std::vector<OdomSample> odom;
+  std::vector<SegmentEvent> events;
+  // What could not be read or found, one line each (a partial report says these).
+  std::vector<std::string> problems;
+};
+
+}  // namespace bag
+}  // namespace virtual_go

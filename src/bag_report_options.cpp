@@ -1,0 +1,106 @@
+#include <cmath>
+#include <cstdlib>
+
+#include "virtual_go/bag/options.h"
+
+namespace virtual_go {
+namespace bag {
+namespace {
+
+double parse_limit(const std::string& option, const std::string& text) {
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  if (text.empty() || *end != '\0' || !std::isfinite(v) || v < 0.0) {
+    throw UsageError(option + " needs a finite number >= 0, got '" + text + "'");
+  }
+  return v;
+}
+
+}  // namespace
+
+std::string usage_text() {
+  return R"(usage: bag_report BAG [--csv OUT.csv] [--plot OUT.png] [--strict] [options]
+
+Inspects a rosbag recorded from the virtual_go stone node: per topic message count, mean rate,
+stamp period p50/p99/max, gaps over 2x the median period, repeated or non-increasing stamps;
+physics health from ~odom and ~info (| |q| - 1 |, energy and world angular momentum drift,
+orientation and position error against the exact closed form, restarted at every ~events
+segment).
+
+options:
+  --csv FILE                  write the physics time series (one row per ~odom message)
+  --plot FILE                 write a PNG of errors and invariants over time (needs gnuplot)
+  --strict                    exit 1 when any figure is over its limit
+  --node-namespace NS         the node's topics are NS/info, NS/odom, NS/events (default /stone;
+                              a topic not found there is taken by message type if unique)
+  --max-orientation-error R   rad; default from the integrator in ~info, dt and |w| (see below)
+  --max-position-error M      m
+  --max-energy-drift X        relative to the segment's energy scale
+  --max-momentum-drift X      relative to |L0|
+  --max-quat-norm-error X     default 1e-9
+  --max-gaps N                gaps allowed per periodic topic (default 0)
+  --rate-tolerance X          allowed |mean rate / ~info rate - 1| (default 0.1)
+  -h, --help                  this text
+
+default limits (h = dt, w = largest |omega| of the segment, T = its duration):
+  exact      orientation 1e-9 rad, position 1e-9 m, energy and momentum drift 1e-9
+  splitting  orientation 1e-9 + 2 (h w)^2 w T,    energy 1e-9 + 0.02 (h w)^2 (1 + w T)
+  rk4        orientation 1e-9 + 0.1 (h w)^4 w T,  energy 1e-9 + 0.02 (h w)^4 (1 + w T)
+  euler      orientation 1e-9 + 5 (h w) w T,      energy 1e-9 + 0.5 (h w) (1 + w T),
+             position + 1.01 |g| h T / 2
+  all        momentum drift 1e-9, | |q| - 1 | 1e-9, position 1e-9 m + 1e-12 |x|
+
+exit codes: 0 ok; 1 --strict and a figure over its limit; 2 bad command line; 3 bag unreadable
+(missing, not a bag, truncated); 4 partial report (empty bag, no ~info or ~odom, reading stopped
+early); 5 --csv or --plot could not be written.
+)";
+}
+
+Options parse_options(const std::vector<std::string>& args) {
+  Options o;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    auto value = [&]() -> std::string {
+      if (i + 1 >= args.size()) throw UsageError(a + " needs a value");
+      return args[++i];
+    };
+    if (a == "-h" || a == "--help") {
+      o.help = true;
+    } else if (a == "--csv") {
+      o.csv_path = value();
+    } else if (a == "--plot") {
+      o.plot_path = value();
+    } else if (a == "--strict") {
+      o.strict = true;
+    } else if (a == "--node-namespace") {
+      o.node_namespace = value();
+    } else if (a == "--max-orientation-error") {
+      o.limits.orientation_error = parse_limit(a, value());
+    } else if (a == "--max-position-error") {
+      o.limits.position_error = parse_limit(a, value());
+    } else if (a == "--max-energy-drift") {
+      o.limits.energy_drift = parse_limit(a, value());
+    } else if (a == "--max-momentum-drift") {
+      o.limits.momentum_drift = parse_limit(a, value());
+    } else if (a == "--max-quat-norm-error") {
+      o.limits.quat_norm_error = parse_limit(a, value());
+    } else if (a == "--max-gaps") {
+      const double n = parse_limit(a, value());
+      if (n != std::floor(n)) throw UsageError("--max-gaps needs a whole number");
+      o.limits.max_gaps = static_cast<std::size_t>(n);
+    } else if (a == "--rate-tolerance") {
+      o.limits.rate_tolerance = parse_limit(a, value());
+    } else if (!a.empty() && a[0] == '-') {
+      throw UsageError("unknown option " + a + " (see --help)");
+    } else if (o.bag_path.empty()) {
+      o.bag_path = a;
+    } else {
+      throw UsageError("more than one bag given: " + o.bag_path + " and " + a);
+    }
+  }
+  if (!o.help && o.bag_path.empty()) throw UsageError("no bag given (see --help)");
+  return o;
+}
+
+}  // namespace bag
+}  // namespace virtual_go

@@ -1,0 +1,281 @@
+#include <console_bridge/console.h>
+#include <nav_msgs/Odometry.h>
+#include <ros/serialization.h>
+#include <rosbag/bag.h>
+#include <rosbag/exceptions.h>
+#include <rosbag/view.h>
+#include <sys/stat.h>
+#include <tf2_msgs/TFMessage.h>
+#include <virtual_go/StoneEvent.h>
+#include <virtual_go/StoneInfo.h>
+
+#include <cstring>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "virtual_go/bag/bag_reader.h"
+
+namespace virtual_go {
+namespace bag {
+namespace {
+
+constexpr char kInfoType[] = "virtual_go/StoneInfo";
+constexpr char kEventType[] = "virtual_go/StoneEvent";
+constexpr char kOdomType[] = "nav_msgs/Odometry";
+constexpr char kTfType[] = "tf2_msgs/TFMessage";
+
+std::int64_t to_ns(const ros::Time& t) { return static_cast<std::int64_t>(t.toNSec()); }
+
+Eigen::Vector3d to_eigen(const geometry_msgs::Vector3& v) { return {v.x, v.y, v.z}; }
+Eigen::Vector3d to_eigen(const geometry_msgs::Point& p) { return {p.x, p.y, p.z}; }
+Eigen::Quaterniond to_eigen(const geometry_msgs::Quaternion& q) { return {q.w, q.x, q.y, q.z}; }
+
+std::string normalise_namespace(std::string ns) {
+  while (!ns.empty() && ns.back() == '/') ns.pop_back();
+  if (ns.empty() || ns.front() != '/') ns.insert(ns.begin(), '/');
+  return ns == "/" ? "" : ns;
+}
+
+// True when the message definition's first field is a std_msgs/Header, so the serialized
+// message starts with seq (uint32), stamp.sec (uint32), stamp.nsec (uint32).
+bool starts_with_header(const std::string& definition) {
+  std::istringstream in(definition);
+  std::string line;
+  while (std::getline(in, line)) {
+    const std::size_t start = line.find_first_not_of(" \t");
+    if (start == std::string::npos || line[start] == '#') continue;
+    std::istringstream fields(line.substr(start));
+    std::string type, name;
+    fields >> type >> name;
+    return (type == "Header" || type == "std_msgs/Header") && name == "header";
+  }
+  return false;
+}
+
+// Reads the header stamp of any message type from its serialized bytes (the types bag_report
+// does not otherwise know still get header stamps, not receipt times).
+bool header_stamp(const rosbag::MessageInstance& m, std::int64_t& stamp_ns) {
+  const std::uint32_t size = m.size();
+  if (size < 12) return false;
+  std::vector<std::uint8_t> buffer(size);
+  ros::serialization::OStream stream(buffer.data(), size);
+  m.write(stream);
+  std::uint32_t sec = 0, nsec = 0;  // ROS serializes little-endian, as the hosts it runs on
+  std::memcpy(&sec, buffer.data() + 4, 4);
+  std::memcpy(&nsec, buffer.data() + 8, 4);
+  stamp_ns = static_cast<std::int64_t>(sec) * 1000000000 + nsec;
+  return true;
+}
+
+class Reader {
+ public:
+  Reader(Recording& out, const std::string& node_namespace)
+      : out_(out), ns_(normalise_namespace(node_namespace)) {}
+
+  void resolve_topics(const std::vector<const rosbag::ConnectionInfo*>& connections) {
+    for (const rosbag::ConnectionInfo* c : connections) {
+      types_[c->topic] = c->datatype;
+      definitions_[c->topic] = c->msg_def;
+      if (c->header) {
+        const auto it = c->header->find("latching");
+        if (it != c->header->end() && it->second == "1") latched_.insert(c->topic);
+      }
+    }
+    info_topic_ = pick(ns_ + "/info", kInfoType, "~info");
+    out_.odom_topic = pick(ns_ + "/odom", kOdomType, "~odom");
+    out_.events_topic = pick(ns_ + "/events", kEventType, "~events");
+    pose_topic_ = ns_ + "/pose";
+  }
+
+  void read(const rosbag::MessageInstance& m) {
+    ++out_.message_count;
+    const std::string& topic = m.getTopic();
+    const std::string& type = m.getDataType();
+    if (type == kTfType && topic != "/tf_static") {
+      read_tf(m);
+    } else {
+      TopicStamps& t = topic_stamps(topic, type);
+      std::int64_t stamp = 0;
+      if (t.header_stamps && header_stamp(m, stamp)) {
+        t.stamps_ns.push_back(stamp);
+      } else {
+        t.header_stamps = false;
+        t.stamps_ns.push_back(to_ns(m.getTime()));
+      }
+    }
+    if (topic == info_topic_) read_info(m);
+    if (topic == out_.odom_topic) read_odom(m);
+    if (topic == out_.events_topic) read_event(m);
+  }
+
+  void finish() {
+    const std::string world = out_.info ? out_.info->world_frame : "world";
+    const std::string stone = out_.info ? out_.info->stone_frame : "stone";
+    for (TopicStamps& t : out_.topics) {
+      if (t.topic == "/tf " + world + "->" + stone) t.at_node_rate = true;
+    }
+    if (out_.message_count == 0) {
+      out_.problems.push_back("the bag holds no messages");
+      return;
+    }
+    if (!out_.info) {
+      out_.problems.push_back("no virtual_go/StoneInfo message (looked for " + ns_ +
+                              "/info): physics check skipped");
+    }
+    if (out_.odom.empty()) {
+      out_.problems.push_back("no nav_msgs/Odometry message (looked for " + ns_ +
+                              "/odom): physics check skipped");
+    }
+  }
+
+ private:
+  // The topic named `name` if it has `type`, else the only topic of that type, else none.
+  std::string pick(const std::string& name, const std::string& type, const std::string& what) {
+    const auto it = types_.find(name);
+    if (it != types_.end()) {
+      if (it->second == type) return name;
+      out_.problems.push_back(name + " has type " + it->second + ", expected " + type);
+      return "";
+    }
+    std::vector<std::string> candidates;
+    for (const auto& [topic, t] : types_) {
+      if (t == type) candidates.push_back(topic);
+    }
+    if (candidates.size() == 1) return candidates.front();
+    if (candidates.size() > 1) {
+      std::string list;
+      for (const std::string& c : candidates) list += " " + c;
+      out_.problems.push_back("several " + type + " topics and none is " + name + ":" + list +
+                              "; pass --node-namespace to choose " + what);
+    }
+    return "";
+  }
+
+  TopicStamps& topic_stamps(const std::string& topic, const std::string& type) {
+    const auto it = index_.find(topic);
+    if (it != index_.end()) return out_.topics[it->second];
+    index_[topic] = out_.topics.size();
+    TopicStamps t;
+    t.topic = topic;
+    t.datatype = type;
+    const auto def = definitions_.find(topic);
+    t.header_stamps = type == "geometry_msgs/TransformStamped" ||
+                      (def != definitions_.end() && starts_with_header(def->second));
+    t.aperiodic = latched_.count(topic) > 0 || type == kInfoType || type == kEventType ||
+                  topic == "/tf_static";
+    t.at_node_rate = topic == out_.odom_topic || topic == pose_topic_;
+    out_.topics.push_back(t);
+    return out_.topics.back();
+  }
+
+  void read_tf(const rosbag::MessageInstance& m) {
+    const tf2_msgs::TFMessage::ConstPtr tf = m.instantiate<tf2_msgs::TFMessage>();
+    if (!tf) return;
+    // One row per frame pair: a /tf that carries several robots must not look jittery.
+    for (const geometry_msgs::TransformStamped& t : tf->transforms) {
+      TopicStamps& row =
+          topic_stamps(m.getTopic() + " " + t.header.frame_id + "->" + t.child_frame_id,
+                       "geometry_msgs/TransformStamped");
+      row.stamps_ns.push_back(to_ns(t.header.stamp));
+    }
+  }
+
+  void read_info(const rosbag::MessageInstance& m) {
+    const StoneInfo::ConstPtr msg = m.instantiate<StoneInfo>();
+    if (!msg || out_.info) return;  // the first info describes the run
+    RecordingInfo info;
+    info.topic = m.getTopic();
+    info.stamp_ns = to_ns(msg->header.stamp);
+    info.world_frame = msg->world_frame.empty() ? "world" : msg->world_frame;
+    info.stone_frame = msg->stone_frame.empty() ? "stone" : msg->stone_frame;
+    info.mass = msg->mass;
+    info.principal_moments = to_eigen(msg->principal_moments);
+    info.model = msg->model;
+    info.integrator = msg->integrator;
+    info.dt = msg->dt;
+    info.dt_ns = msg->dt_ns;
+    info.rate = msg->rate;
+    info.gravity = to_eigen(msg->gravity);
+    out_.info = info;
+  }
+
+  void read_odom(const rosbag::MessageInstance& m) {
+    const nav_msgs::Odometry::ConstPtr msg = m.instantiate<nav_msgs::Odometry>();
+    if (!msg) return;
+    OdomSample s;
+    s.stamp_ns = to_ns(msg->header.stamp);
+    s.position_world = to_eigen(msg->pose.pose.position);
+    s.orientation_raw = to_eigen(msg->pose.pose.orientation);
+    s.velocity_body = to_eigen(msg->twist.twist.linear);
+    s.angular_velocity_body = to_eigen(msg->twist.twist.angular);
+    out_.odom.push_back(s);
+  }
+
+  void read_event(const rosbag::MessageInstance& m) {
+    const StoneEvent::ConstPtr msg = m.instantiate<StoneEvent>();
+    if (!msg) return;
+    SegmentEvent e;
+    e.stamp_ns = to_ns(msg->header.stamp);
+    e.segment = msg->segment;
+    e.reason = msg->reason;
+    e.position_world = to_eigen(msg->pose.position);
+    e.orientation = to_eigen(msg->pose.orientation);
+    e.velocity_world = to_eigen(msg->twist.linear);
+    e.angular_momentum_world = to_eigen(msg->angular_momentum);
+    out_.events.push_back(e);
+  }
+
+  Recording& out_;
+  std::string ns_;
+  std::string info_topic_, pose_topic_;
+  std::map<std::string, std::string> types_, definitions_;
+  std::set<std::string> latched_;
+  std::map<std::string, std::size_t> index_;
+};
+
+}  // namespace
+
+Recording read_recording(const std::string& path, const std::string& node_namespace) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0) throw BagReadError("no such file: " + path);
+  if (!S_ISREG(st.st_mode)) throw BagReadError("not a regular file: " + path);
+
+  // rosbag and cpp_common log damage through console_bridge on their way to throwing; the
+  // exception is reported here in one line, so their multi-line messages are noise.
+  console_bridge::setLogLevel(console_bridge::CONSOLE_BRIDGE_LOG_NONE);
+
+  Recording out;
+  out.path = path;
+  rosbag::Bag bag;
+  try {
+    bag.open(path, rosbag::bagmode::Read);
+  } catch (const rosbag::BagUnindexedException&) {
+    throw BagReadError(path + " has no index (recording interrupted?); `rosbag reindex " + path +
+                       "` may recover it");
+  } catch (const rosbag::BagException& e) {
+    throw BagReadError("cannot read " + path + " as a rosbag: " + e.what());
+  } catch (const std::exception& e) {
+    // A truncated index can hold garbage sizes (bad_alloc, length_error): same verdict.
+    throw BagReadError("cannot read " + path + " as a rosbag (truncated or corrupt?): " + e.what());
+  }
+
+  Reader reader(out, node_namespace);
+  try {
+    rosbag::View view(bag);
+    reader.resolve_topics(view.getConnections());
+    if (view.size() > 0) {
+      out.bag_duration_s = (view.getEndTime() - view.getBeginTime()).toSec();
+    }
+    for (const rosbag::MessageInstance& m : view) reader.read(m);
+  } catch (const std::exception& e) {
+    // Damage inside a chunk: keep what was read and say where it stopped.
+    out.problems.push_back("reading stopped after " + std::to_string(out.message_count) +
+                           " messages (truncated or corrupt bag): " + e.what());
+  }
+  reader.finish();
+  return out;
+}
+
+}  // namespace bag
+}  // namespace virtual_go

@@ -1,0 +1,140 @@
+#include <cmath>
+#include <sstream>
+
+#include "virtual_go/bag/thresholds.h"
+#include "virtual_go/validation.h"
+
+namespace virtual_go {
+namespace bag {
+namespace {
+
+struct IntegratorConstants {
+  int order;
+  double k_orientation;
+  double k_energy;
+};
+
+// See thresholds.h for where these come from.
+std::optional<IntegratorConstants> constants_for(const std::string& integrator) {
+  if (integrator == "exact") return IntegratorConstants{0, 0.0, 0.0};
+  if (integrator == "splitting") return IntegratorConstants{2, 2.0, 0.02};
+  if (integrator == "rk4") return IntegratorConstants{4, 0.1, 0.02};
+  if (integrator == "euler") return IntegratorConstants{1, 5.0, 0.5};
+  return std::nullopt;
+}
+
+constexpr double kFloor = 1e-9;
+
+std::string format_short(double v) {
+  std::ostringstream out;
+  out.precision(3);
+  out << v;
+  return out.str();
+}
+
+}  // namespace
+
+PhysicsBounds physics_bounds(const std::string& integrator, double dt, const SegmentResult& segment,
+                             double gravity_norm, const LimitOverrides& overrides) {
+  PhysicsBounds b;
+  const bool all_overridden = overrides.orientation_error && overrides.position_error &&
+                              overrides.energy_drift && overrides.momentum_drift;
+  const std::optional<IntegratorConstants> c = constants_for(integrator);
+  if (!c && !all_overridden) {
+    throw InvalidArgument("no error bound known for integrator '" + integrator +
+                          "' (known: euler rk4 splitting exact); pass --max-orientation-error, "
+                          "--max-position-error, --max-energy-drift and --max-momentum-drift");
+  }
+  const double w = segment.max_angular_speed, t = segment.duration_s;
+  const double hw_p = c && c->order > 0 ? std::pow(dt * w, c->order) : 0.0;
+  b.orientation_error = kFloor + (c ? c->k_orientation * hw_p * w * t : 0.0);
+  b.energy_drift = kFloor + (c ? c->k_energy * hw_p * (1.0 + w * t) : 0.0);
+  b.momentum_drift = kFloor;
+  b.position_error = kFloor + 1e-12 * segment.max_abs_position;
+  if (integrator == "euler") b.position_error += 1.01 * 0.5 * gravity_norm * dt * t;
+  b.quat_norm_error = kFloor;
+  b.basis = integrator + ", dt " + format_short(dt) + " s, |w| " + format_short(w) + " rad/s, T " +
+            format_short(t) + " s";
+
+  if (overrides.orientation_error) b.orientation_error = *overrides.orientation_error;
+  if (overrides.position_error) b.position_error = *overrides.position_error;
+  if (overrides.energy_drift) b.energy_drift = *overrides.energy_drift;
+  if (overrides.momentum_drift) b.momentum_drift = *overrides.momentum_drift;
+  if (overrides.quat_norm_error) b.quat_norm_error = *overrides.quat_norm_error;
+  return b;
+}
+
+std::vector<Check> run_checks(const Recording& recording, const std::vector<StampStatistics>& stats,
+                              const PhysicsResult* physics, const LimitOverrides& overrides) {
+  std::vector<Check> checks;
+  auto add = [&](std::string figure, std::string subject, double value, double limit,
+                 std::string basis) {
+    // !(value > limit) would pass a NaN; a figure that could not be computed fails.
+    const bool pass = std::isfinite(value) && value <= limit;
+    checks.push_back({std::move(figure), std::move(subject), value, limit, pass, std::move(basis)});
+  };
+
+  for (std::size_t i = 0; i < recording.topics.size() && i < stats.size(); ++i) {
+    const TopicStamps& topic = recording.topics[i];
+    const StampStatistics& s = stats[i];
+    if (topic.aperiodic || !topic.header_stamps) continue;
+    add("repeated stamps", topic.topic, static_cast<double>(s.repeated.size()), 0.0,
+        "stamps must strictly increase");
+    add("non-increasing stamps", topic.topic, static_cast<double>(s.non_increasing.size()), 0.0,
+        "stamps must strictly increase");
+    add("gaps > 2x period", topic.topic, static_cast<double>(s.gaps.size()),
+        static_cast<double>(overrides.max_gaps), "--max-gaps");
+    if (topic.at_node_rate && recording.info && recording.info->rate > 0.0 && s.count > 1) {
+      add("mean rate deviation", topic.topic, std::abs(s.mean_rate_hz / recording.info->rate - 1.0),
+          overrides.rate_tolerance,
+          "relative to ~info rate " + format_short(recording.info->rate) + " Hz, --rate-tolerance");
+    }
+  }
+
+  if (physics == nullptr || !recording.info) return checks;
+  const RecordingInfo& info = *recording.info;
+  // Per figure, the segment closest to (or furthest over) its own limit.
+  struct Worst {
+    double ratio = -1.0;
+    Check check;
+  };
+  Worst worst[5];
+  const char* names[5] = {"max | |q| - 1 |", "energy drift", "momentum drift",
+                          "orientation error (rad)", "position error (m)"};
+  for (std::size_t k = 0; k < physics->segments.size(); ++k) {
+    const SegmentResult& seg = physics->segments[k];
+    if (seg.samples == 0) continue;
+    PhysicsBounds b;
+    try {
+      b = physics_bounds(info.integrator, info.dt, seg, info.gravity.norm(), overrides);
+    } catch (const InvalidArgument& e) {
+      add("physics bound", "segment " + std::to_string(k), NAN, 0.0, e.what());
+      return checks;
+    }
+    const double values[5] = {seg.max_quat_norm_error, seg.max_energy_drift, seg.max_momentum_drift,
+                              seg.predicted ? seg.max_orientation_error : NAN,
+                              seg.predicted ? seg.max_position_error : NAN};
+    const double limits[5] = {b.quat_norm_error, b.energy_drift, b.momentum_drift,
+                              b.orientation_error, b.position_error};
+    for (int f = 0; f < 5; ++f) {
+      double ratio = INFINITY;  // a figure that could not be computed is the worst
+      if (std::isfinite(values[f])) {
+        ratio = limits[f] > 0.0 ? values[f] / limits[f] : (values[f] > 0.0 ? INFINITY : 0.0);
+      }
+      if (ratio > worst[f].ratio) {
+        const std::string basis = f == 0 ? "a published quaternion is unit" : b.basis;
+        worst[f] = {ratio,
+                    {names[f], "segment " + std::to_string(k), values[f], limits[f],
+                     std::isfinite(values[f]) && values[f] <= limits[f],
+                     seg.predicted || f < 3 ? basis : seg.note}};
+      }
+    }
+  }
+  for (const Worst& w : worst) {
+    if (w.ratio >= 0.0) checks.push_back(w.check);
+  }
+  return checks;
+}
+
+}  // namespace bag
+}  // namespace virtual_go

@@ -1,0 +1,26 @@
+# Tests of bag_report (docs/recording.md). Included by CMakeLists.txt inside CATKIN_ENABLE_TESTING.
+
+# The analysis on plain data (no bag, no master).
+catkin_add_gtest(test_bag_analysis test/test_bag_analysis.cpp test/bag_test_bags.cpp)
+target_link_libraries(test_bag_analysis virtual_go_bag_report GTest::gtest_main)
+
+# The real binary on bags the test writes with the rosbag C++ API.
+catkin_add_gtest(test_bag_report_cli test/test_bag_report_cli.cpp test/bag_test_bags.cpp)
+target_link_libraries(test_bag_report_cli virtual_go_bag_report GTest::gtest_main)
+target_compile_definitions(test_bag_report_cli PRIVATE
+  BAG_REPORT_PATH="$<TARGET_FILE:bag_report>"
+  BAG_TEST_DIR="${CMAKE_CURRENT_BINARY_DIR}/bag_report_test")
+add_dependencies(test_bag_report_cli bag_report)
+
+# Records the live node, then holds the bag to bag_report --strict. add_rostest_gtest cannot
+# pass launch arguments, hence add_rostest with ARGS and the executable by hand.
+if(TARGET stone_node)
+  add_executable(test_bag_record_live EXCLUDE_FROM_ALL test/test_bag_record_live.cpp)
+  target_link_libraries(test_bag_record_live virtual_go_bag_report GTest::gtest)
+  target_compile_definitions(test_bag_record_live PRIVATE
+    BAG_REPORT_PATH="$<TARGET_FILE:bag_report>")
+  add_dependencies(test_bag_record_live bag_report stone_node)
+  add_dependencies(tests test_bag_record_live)
+  add_rostest(test/bag_record.test DEPENDENCIES test_bag_record_live
+    ARGS bag:=${CMAKE_CURRENT_BINARY_DIR}/bag_record_live.bag)
+endif()
