@@ -1,0 +1,120 @@
+// Waits for the recording of the live node (test/bag_record.test), then checks it with the
+// real bag_report --strict and, through the library, the figures themselves.
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <thread>
+
+#include "virtual_go/bag/bag_reader.h"
+#include "virtual_go/bag/report.h"
+
+namespace {
+
+std::string g_bag;
+
+bool exists(const std::string& path) {
+  struct stat st {};
+  return ::stat(path.c_str(), &st) == 0;
+}
+
+// rosbag record writes BAG.active and renames it to BAG when --duration is over.
+bool wait_for_bag(double timeout_s) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+  while (std::chrono::steady_clock::now() < deadline) {
+    if (exists(g_bag) && !exists(g_bag + ".active")) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  return false;
+}
+
+const virtual_go::bag::TopicStamps* topic(const virtual_go::bag::Report& r, const std::string& name,
+                                          std::size_t* index) {
+  for (std::size_t i = 0; i < r.recording.topics.size(); ++i) {
+    if (r.recording.topics[i].topic == name) {
+      *index = i;
+      return &r.recording.topics[i];
+    }
+  }
+  return nullptr;
+}
+
+TEST(BagRecordLive, RecordingPassesBagReportStrict) {
+  ASSERT_TRUE(wait_for_bag(60.0)) << "no finished recording at " << g_bag;
+
+  // The binary, as a user runs it.
+  const std::string out = g_bag + ".report.txt", csv = g_bag + ".csv";
+  const std::string cmd =
+      std::string(BAG_REPORT_PATH) + " " + g_bag + " --strict --csv " + csv + " >" + out + " 2>&1";
+  const int status = std::system(cmd.c_str());
+  std::ifstream report_file(out);
+  std::stringstream text;
+  text << report_file.rdbuf();
+  std::cout << text.str();
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 0) << text.str();
+
+  // The figures, through the library.
+  namespace vb = virtual_go::bag;
+  const vb::Report r = vb::analyse(vb::read_recording(g_bag, "/stone"), vb::LimitOverrides{});
+  EXPECT_TRUE(r.problems.empty()) << r.problems.front();
+  ASSERT_TRUE(r.recording.info) << "latched ~info not recorded";
+  ASSERT_FALSE(r.recording.events.empty()) << "latched ~events not recorded";
+  const double rate = r.recording.info->rate;
+
+  for (const std::string name : {"/stone/odom", "/stone/pose", "/tf world->stone"}) {
+    std::size_t i = 0;
+    const vb::TopicStamps* t = topic(r, name, &i);
+    ASSERT_NE(t, nullptr) << name << " not recorded";
+    const vb::StampStatistics& s = r.stats[i];
+    EXPECT_GT(s.count, 20u) << name;
+    // Counts match the rate: one message per 1 / rate of stamp time, a few missed at most.
+    const double expected = s.span_s * rate + 1.0;
+    EXPECT_NEAR(static_cast<double>(s.count), expected, 0.05 * expected + 2.0) << name;
+    EXPECT_TRUE(s.repeated.empty()) << name;
+    EXPECT_TRUE(s.non_increasing.empty()) << name;
+  }
+  std::size_t i = 0;
+  EXPECT_NE(topic(r, "/stone/marker", &i), nullptr) << "latched ~marker not recorded";
+
+  ASSERT_TRUE(r.physics);
+  EXPECT_GE(r.physics->segments.size(), 1u);
+  for (const vb::SegmentResult& seg : r.physics->segments) {
+    if (seg.samples == 0) continue;
+    ASSERT_TRUE(seg.predicted) << seg.note;
+    const vb::PhysicsBounds b =
+        vb::physics_bounds(r.recording.info->integrator, r.recording.info->dt, seg,
+                           r.recording.info->gravity.norm(), {});
+    EXPECT_LE(seg.max_orientation_error, b.orientation_error) << seg.plan.reason;
+    EXPECT_LE(seg.max_position_error, b.position_error) << seg.plan.reason;
+    EXPECT_LE(seg.max_energy_drift, b.energy_drift) << seg.plan.reason;
+    EXPECT_LE(seg.max_momentum_drift, b.momentum_drift) << seg.plan.reason;
+  }
+  for (const vb::Check& c : r.checks) EXPECT_TRUE(c.pass) << c.figure << " " << c.subject;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  testing::InitGoogleTest(&argc, argv);
+  // rostest appends __name:= and __log:= remappings; the first other argument is the bag.
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a.rfind("__", 0) != 0 && a.rfind("--", 0) != 0) {
+      g_bag = a;
+      break;
+    }
+  }
+  if (g_bag.empty()) {
+    std::cerr << "usage: test_bag_record_live BAG\n";
+    return 2;
+  }
+  return RUN_ALL_TESTS();
+}
