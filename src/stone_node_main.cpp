@@ -14,8 +14,11 @@ int main(int argc, char** argv) {
     }
   }
   ros::init(argc, argv, "stone");
+  // Outlives the node: when the last NodeHandle goes, roscpp shuts down and drops log output,
+  // which would swallow the FATAL below.
+  ros::NodeHandle nh, private_nh("~");
   try {
-    virtual_go::StoneNode node(ros::NodeHandle(), ros::NodeHandle("~"));
+    virtual_go::StoneNode node(nh, private_nh);
     ros::spin();
   } catch (const virtual_go::ConfigError& e) {
     ROS_FATAL("stone_node: invalid parameter %s", e.what());

@@ -7,3 +7,24 @@ catkin_add_gtest(node_adapter_test
   test/state_request_test.cpp
   test/stone_simulation_test.cpp)
 target_link_libraries(node_adapter_test virtual_go_sim GTest::gtest_main)
+
+# The node with a real master (rostest). One gtest binary holds every suite; each .test file
+# starts the node with its config and picks a suite with --gtest_filter.
+add_rostest_gtest(stone_node_rostest test/stone_node_tf.test
+  test/stone_node_rostest_main.cpp
+  test/stone_node_tf_test.cpp
+  test/stone_node_services_test.cpp
+  test/stone_node_sim_time_test.cpp
+  test/stone_node_params_test.cpp)
+target_link_libraries(stone_node_rostest ${catkin_LIBRARIES} GTest::gtest)
+target_compile_definitions(stone_node_rostest PRIVATE STONE_NODE_PATH="$<TARGET_FILE:stone_node>")
+add_dependencies(stone_node_rostest stone_node ${${PROJECT_NAME}_EXPORTED_TARGETS}
+  ${catkin_EXPORTED_TARGETS})
+foreach(node_test
+    stone_node_tf_constant_omega
+    stone_node_services
+    stone_node_sim_time
+    stone_node_params
+    stone_node_hz)
+  add_rostest(test/${node_test}.test DEPENDENCIES stone_node_rostest stone_node)
+endforeach()
