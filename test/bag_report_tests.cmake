@@ -21,6 +21,9 @@ if(TARGET stone_node)
     BAG_REPORT_PATH="$<TARGET_FILE:bag_report>")
   add_dependencies(test_bag_record_live bag_report stone_node)
   add_dependencies(tests test_bag_record_live)
+  # The default scene (exact integrator, 1e-9 rad), and again with splitting (a dt-based bound).
   add_rostest(test/bag_record.test DEPENDENCIES test_bag_record_live
     ARGS bag:=${CMAKE_CURRENT_BINARY_DIR}/bag_record_live.bag)
+  add_rostest(test/bag_record.test DEPENDENCIES test_bag_record_live
+    ARGS bag:=${CMAKE_CURRENT_BINARY_DIR}/bag_record_live_splitting.bag integrator:=splitting)
 endif()

@@ -7,6 +7,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
@@ -19,6 +20,7 @@
 namespace {
 
 std::string g_bag;
+constexpr std::size_t kAllowedGaps = 3;
 
 bool exists(const std::string& path) {
   struct stat st {};
@@ -51,8 +53,10 @@ TEST(BagRecordLive, RecordingPassesBagReportStrict) {
 
   // The binary, as a user runs it.
   const std::string out = g_bag + ".report.txt", csv = g_bag + ".csv";
-  const std::string cmd =
-      std::string(BAG_REPORT_PATH) + " " + g_bag + " --strict --csv " + csv + " >" + out + " 2>&1";
+  // A tick or two may be late on a loaded CI machine (ros::Timer then skips it): allow a
+  // few gaps, not more; every other limit is bag_report's default.
+  const std::string cmd = std::string(BAG_REPORT_PATH) + " " + g_bag + " --strict --max-gaps " +
+                          std::to_string(kAllowedGaps) + " --csv " + csv + " >" + out + " 2>&1";
   const int status = std::system(cmd.c_str());
   std::ifstream report_file(out);
   std::stringstream text;
@@ -63,7 +67,9 @@ TEST(BagRecordLive, RecordingPassesBagReportStrict) {
 
   // The figures, through the library.
   namespace vb = virtual_go::bag;
-  const vb::Report r = vb::analyse(vb::read_recording(g_bag, "/stone"), vb::LimitOverrides{});
+  vb::LimitOverrides limits;
+  limits.max_gaps = kAllowedGaps;
+  const vb::Report r = vb::analyse(vb::read_recording(g_bag, "/stone"), limits);
   EXPECT_TRUE(r.problems.empty()) << r.problems.front();
   ASSERT_TRUE(r.recording.info) << "latched ~info not recorded";
   ASSERT_FALSE(r.recording.events.empty()) << "latched ~events not recorded";
@@ -116,5 +122,8 @@ int main(int argc, char** argv) {
     std::cerr << "usage: test_bag_record_live BAG\n";
     return 2;
   }
+  // A bag from an earlier run must not pass for this one. Safe against the recorder started
+  // with us: it writes BAG.active and renames it only when its --duration is over.
+  std::remove(g_bag.c_str());
   return RUN_ALL_TESTS();
 }
