@@ -8,6 +8,8 @@ Stone make_stone(const StoneSpec& spec) {
   require_positive("stone width", spec.width);
   // Checked even when density or mass override it: a misspelt material is still an error.
   const double material_rho = material_density(spec.material);
+  // Every given field is checked, also one that a later override makes unused.
+  if (spec.density) require_positive("density", *spec.density);
   double height = StoneShape::thickness_for_size(spec.size_number.value_or(33));
   if (spec.height) height = *spec.height;
   const StoneShape shape(spec.width, height);
@@ -16,7 +18,6 @@ Stone make_stone(const StoneSpec& spec) {
     return Stone{shape, mass, *spec.mass / shape.volume()};
   }
   const double density = spec.density ? *spec.density : material_rho;
-  if (spec.density) require_positive("density", density);
   return Stone{shape, MassProperties::of_lens(shape, density), density};
 }
 
