@@ -1,12 +1,27 @@
 #!/usr/bin/env bash
-# The main job: set up (packages, build) and run the stone demo.
+# The main job: set up (packages, build), then launch the stone node; with rviz when a display
+# is available, headless otherwise.
 set -euo pipefail
 case "${1:-}" in
   -h | --help)
-    echo "usage: scripts/run.sh   set up (packages, build) and run the virtual_go demo"
+    cat <<'USAGE'
+usage: scripts/run.sh [ARG:=VALUE ...]
+  Set up (packages, build), then `roslaunch virtual_go stone.launch`, with rviz:=true when
+  $DISPLAY is set. Arguments go to roslaunch, for example:
+    scripts/run.sh config:=$PWD/config/tumble.yaml      the wobbling stone, no gravity
+    scripts/run.sh record:=true bag:=$PWD/run.bag        also record a bag (default ./virtual_go.bag)
+    scripts/run.sh rviz:=false                           headless even with a display
+  Stop with Ctrl-C. Topics, services and parameters: docs/ros_interface.md.
+USAGE
     exit 0
     ;;
 esac
 source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
 vg_setup >&2
-exec "$VG_BUILD/devel/lib/virtual_go/stone_demo" "$@"
+# setup.bash reads unset variables.
+set +u
+source "$VG_BUILD/devel/setup.bash"
+set -u
+rviz=false
+if [ -n "${DISPLAY:-}" ]; then rviz=true; fi
+exec roslaunch virtual_go stone.launch rviz:="$rviz" "$@"

@@ -28,3 +28,6 @@ foreach(node_test
     stone_node_hz)
   add_rostest(test/${node_test}.test DEPENDENCIES stone_node_rostest stone_node)
 endforeach()
+
+# rviz under Xvfb (the test starts Xvfb and rviz itself and reads a screenshot).
+add_rostest(test/rviz_smoke.test DEPENDENCIES stone_node)
