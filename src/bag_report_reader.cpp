@@ -45,6 +45,7 @@ bool starts_with_header(const std::string& definition) {
   while (std::getline(in, line)) {
     const std::size_t start = line.find_first_not_of(" \t");
     if (start == std::string::npos || line[start] == '#') continue;
+    if (line.find('=') != std::string::npos) continue;  // a constant, not a field
     std::istringstream fields(line.substr(start));
     std::string type, name;
     fields >> type >> name;

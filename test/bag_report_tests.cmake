@@ -27,3 +27,10 @@ if(TARGET stone_node)
   add_rostest(test/bag_record.test DEPENDENCIES test_bag_record_live
     ARGS bag:=${CMAKE_CURRENT_BINARY_DIR}/bag_record_live_splitting.bag integrator:=splitting)
 endif()
+
+# Replay: rosbag play --clock with use_sim_time gives tf2 the recorded motion (no node needed).
+add_executable(test_bag_replay EXCLUDE_FROM_ALL test/test_bag_replay.cpp test/bag_test_bags.cpp)
+target_link_libraries(test_bag_replay virtual_go_bag_report GTest::gtest)
+add_dependencies(tests test_bag_replay)
+add_rostest(test/bag_replay.test DEPENDENCIES test_bag_replay
+  ARGS bag:=${CMAKE_CURRENT_BINARY_DIR}/bag_replay.bag)
