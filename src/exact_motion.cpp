@@ -44,6 +44,10 @@ RigidBodyState ExactMotion::state_at(double t) const {
   s.velocity_world = initial_.velocity_world + t * g;
   s.orientation = left_rotation(t) * initial_.orientation * right_rotation(t);
   s.orientation.normalize();
+  if (!s.position_world.allFinite() || !s.velocity_world.allFinite()) {
+    // Finite but enormous t: the parabola overflows.
+    throw InvalidArgument("time " + format_value(t) + " s is too large: the state overflows");
+  }
   return s;
 }
 

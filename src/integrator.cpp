@@ -1,5 +1,6 @@
 #include "virtual_go/integrator.h"
 
+#include <cmath>
 #include <limits>
 
 #include "virtual_go/euler_integrator.h"
@@ -28,12 +29,13 @@ double Integrator::max_rotation_per_step() const { return std::numeric_limits<do
 void Integrator::advance(RigidBodyState& state, double dt) {
   require_positive("dt", dt);
   // Check the input before stepping: a zero quaternion would otherwise pass through a step
-  // unchanged (normalising zero leaves zero) and come out finite. The cheap test runs every
-  // step; validated() only runs to build the message.
-  if (!all_finite(state) || !(state.orientation.coeffs().squaredNorm() > 1e-18)) {
-    state.validated();
-  }
+  // unchanged (normalising zero leaves zero) and come out finite, and a huge one (|q| ~ 1e300)
+  // overflows Eigen's normalize() into zero. The cheap test runs every step; validated() only
+  // runs for a non-finite or non-unit input, to reject it or to normalise it.
   RigidBodyState next = state;
+  if (!all_finite(state) || !(std::abs(state.orientation.coeffs().squaredNorm() - 1.0) <= 1e-12)) {
+    next = state.validated();
+  }
   step(next, dt);
   if (!all_finite(next)) {
     state.validated();  // names the bad input field, if the input was the cause

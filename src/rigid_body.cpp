@@ -72,6 +72,9 @@ RigidBodyState with_angular_velocity_world(const MotionModel& model, RigidBodySt
   state = state.validated();
   require_finite("angular velocity", omega_world);
   state.angular_momentum_world = model.angular_momentum_world(state.orientation, omega_world);
+  // A finite but absurd omega (or inertia) can overflow L; never hand back a non-finite state.
+  require_finite("angular momentum from angular velocity " + format_vector(omega_world),
+                 state.angular_momentum_world);
   return state;
 }
 

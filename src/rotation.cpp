@@ -2,11 +2,18 @@
 
 #include <cmath>
 
+#include "virtual_go/validation.h"
+
 namespace virtual_go {
 
 Eigen::Quaterniond rotation_exp(const Eigen::Vector3d& v) {
-  const double angle = v.norm();
+  double angle = v.norm();
   if (angle == 0.0) return Eigen::Quaterniond::Identity();
+  if (!std::isfinite(angle)) {
+    // Non-finite input is an error; a huge finite one only overflowed the plain norm.
+    require_finite("rotation vector", v);
+    angle = v.stableNorm();
+  }
   const double half = 0.5 * angle;
   // sin(half)/angle computed directly keeps full relative accuracy for tiny angles.
   const double s = std::sin(half) / angle;

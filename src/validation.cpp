@@ -52,7 +52,9 @@ Eigen::Quaterniond require_unit_quaternion(const std::string& field, const Eigen
   if (!c.allFinite()) {
     throw InvalidArgument(field + " must be finite, got " + text());
   }
-  const double norm = c.norm();
+  double norm = c.norm();
+  // Huge finite coefficients overflow the plain norm (giving a zero quaternion); scale instead.
+  if (std::isinf(norm)) norm = c.stableNorm();
   if (!(norm > 1e-9)) {
     throw InvalidArgument(field + " must be a non-zero quaternion, got " + text());
   }

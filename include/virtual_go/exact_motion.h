@@ -14,6 +14,7 @@ class ExactMotion {
   ExactMotion(const MotionSetup& setup, const RigidBodyState& initial);
 
   // The state at time t (s) after the initial state, evaluated directly (no accumulation).
+  // Throws InvalidArgument for a non-finite t or one so large that the state overflows.
   RigidBodyState state_at(double t) const;
 
   // Rotation over h as two fixed quaternions: q(t + h) = left(h) * q(t) * right(h).

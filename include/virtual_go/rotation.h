@@ -6,6 +6,7 @@
 namespace virtual_go {
 
 // Rotation by angle |v| about v / |v| (identity for v = 0). Accurate for tiny |v|.
+// Throws InvalidArgument for a non-finite v.
 Eigen::Quaterniond rotation_exp(const Eigen::Vector3d& v);
 
 // Geodesic angle between two orientations, sign-insensitive and accurate near zero:
