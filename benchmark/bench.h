@@ -15,12 +15,12 @@ namespace vg_bench {
 struct Scenario {
   std::string name;
   std::string description;
-  virtual_go::MotionSetup setup;          // our model and gravity
-  virtual_go::RigidBodyState initial;     // angular momentum set from initial_omega_world
-  Eigen::Vector3d initial_omega_world;    // rad/s, what the peers are given
-  double mass;                            // kg
-  Eigen::Vector3d peer_inertia_body;      // principal moments the peers simulate, kg m^2
-  double duration;                        // s
+  virtual_go::MotionSetup setup;        // our model and gravity
+  virtual_go::RigidBodyState initial;   // angular momentum set from initial_omega_world
+  Eigen::Vector3d initial_omega_world;  // rad/s, what the peers are given
+  double mass;                          // kg
+  Eigen::Vector3d peer_inertia_body;    // principal moments the peers simulate, kg m^2
+  double duration;                      // s
 };
 
 // What every method reports after a step, in our conventions (q body->world, world frame).

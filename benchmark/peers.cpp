@@ -69,9 +69,10 @@ class BulletMethod : public Method {
     if (!noted_) {
       noted_ = true;
       notes_.push_back(
-          "Bullet " + std::to_string(btGetVersion()) + " " + name() + " (double precision, mass "
-          "and inertia x " + fmt(mass_scale_) + "): btRigidBody flags = " +
-          std::to_string(body_->getFlags()) +
+          "Bullet " + std::to_string(btGetVersion()) + " " + name() +
+          " (double precision, mass "
+          "and inertia x " +
+          fmt(mass_scale_) + "): btRigidBody flags = " + std::to_string(body_->getFlags()) +
           " (8 = BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_BODY, the default since 2.83), linear/angular "
           "damping 0, activation DISABLE_DEACTIVATION, stepSimulation(dt, 1, dt) = one internal "
           "step per call");
@@ -150,7 +151,8 @@ class OdeMethod : public Method {
       noted_ = true;
       notes_.push_back("ODE " + name() + ": dWorldStep, finite rotation mode " +
                        std::to_string(dBodyGetFiniteRotationMode(body_)) + ", gyroscopic term " +
-                       (dBodyGetGyroscopicMode(body_) ? "on" : "off") + " (default), max angular speed " + fmt(dBodyGetMaxAngularSpeed(body_)) +
+                       (dBodyGetGyroscopicMode(body_) ? "on" : "off") +
+                       " (default), max angular speed " + fmt(dBodyGetMaxAngularSpeed(body_)) +
                        ", auto-disable " + std::to_string(dBodyGetAutoDisableFlag(body_)) +
                        ", damping " + fmt(dBodyGetLinearDamping(body_)) + "/" +
                        fmt(dBodyGetAngularDamping(body_)));
@@ -255,9 +257,10 @@ class MujocoMethod : public Method {
       noted_ = true;
       notes_.push_back("MuJoCo " + std::to_string(mj_version()) + " " + name() +
                        ": one body with a free joint and an explicit <inertial> (compiled "
-                       "inertia " + fmt(model_->body_inertia[3]) + " " +
-                       fmt(model_->body_inertia[4]) + " " + fmt(model_->body_inertia[5]) +
-                       ", mass " + fmt(model_->body_mass[1]) + "), joint damping 0, mj_step");
+                       "inertia " +
+                       fmt(model_->body_inertia[3]) + " " + fmt(model_->body_inertia[4]) + " " +
+                       fmt(model_->body_inertia[5]) + ", mass " + fmt(model_->body_mass[1]) +
+                       "), joint damping 0, mj_step");
     }
   }
   void unload() {

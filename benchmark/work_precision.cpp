@@ -207,8 +207,12 @@ std::vector<Scenario> make_scenarios() {
 
   auto make = [&](const std::string& name, const std::string& what, const vg::MotionModel& model,
                   const Eigen::Vector3d& omega) {
-    Scenario s{name, what, vg::MotionSetup{model, g},
-               vg::with_angular_velocity_world(model, start, omega), omega, mp.mass(),
+    Scenario s{name,
+               what,
+               vg::MotionSetup{model, g},
+               vg::with_angular_velocity_world(model, start, omega),
+               omega,
+               mp.mass(),
                model.kind() == vg::MotionModelKind::constant_omega
                    ? Eigen::Vector3d::Constant(model.isotropic_moment())
                    : mp.principal_moments_body(),
@@ -220,8 +224,8 @@ std::vector<Scenario> make_scenarios() {
            rigid, omega_tumble),
       make("spin", "rigid_body, gravity, omega 45 rad/s along the symmetry axis", rigid,
            speed * axis),
-      make("flip", "rigid_body, gravity, omega 45 rad/s perpendicular to the symmetry axis",
-           rigid, speed * across),
+      make("flip", "rigid_body, gravity, omega 45 rad/s perpendicular to the symmetry axis", rigid,
+           speed * across),
       make("article",
            "constant_omega (the article's model), gravity, world omega (20, 5, 40) rad/s; peers "
            "simulate a body with isotropic inertia trace(I)/3, whose omega is constant too",
@@ -238,7 +242,8 @@ std::vector<Step> make_steps(bool quick) {
   // The two frame rates users pick, then powers of two down to 2^-16 s.
   std::vector<Step> steps{{1.0 / 30, "1/30"}, {1.0 / 60, "1/60"}};
   const int last = quick ? 10 : 16;
-  for (int k = 5; k <= last; ++k) steps.push_back({std::ldexp(1.0, -k), "1/" + std::to_string(1 << k)});
+  for (int k = 5; k <= last; ++k)
+    steps.push_back({std::ldexp(1.0, -k), "1/" + std::to_string(1 << k)});
   std::sort(steps.begin(), steps.end(), [](const Step& a, const Step& b) { return a.dt > b.dt; });
   return steps;
 }
@@ -262,9 +267,9 @@ void write_csv(const std::string& path, const std::vector<Result>& results) {
       << "," << g(r.pos_T) << "," << g(r.ok() ? r.pos_max : NAN) << "," << g(r.energy_T) << ","
       << g(r.ok() ? r.energy_max : NAN) << "," << g(r.rot_energy_T) << ","
       << g(r.ok() ? r.rot_energy_max : NAN) << "," << g(r.momentum_T) << ","
-      << g(r.ok() ? r.momentum_max : NAN) << "," << g(r.ns_per_step) << ","
-      << g(r.ns_per_step_min) << "," << g(r.ok() ? r.ns_per_sim_second() : NAN) << ","
-      << r.timed_steps << "," << r.reps << "\n";
+      << g(r.ok() ? r.momentum_max : NAN) << "," << g(r.ns_per_step) << "," << g(r.ns_per_step_min)
+      << "," << g(r.ok() ? r.ns_per_sim_second() : NAN) << "," << r.timed_steps << "," << r.reps
+      << "\n";
   }
 }
 
@@ -293,8 +298,8 @@ void write_tables(const std::string& path, const std::vector<Scenario>& scenario
                   const std::vector<Result>& results) {
   std::ofstream f(path);
   for (const Scenario& s : scenarios) {
-    f << "### " << s.name << "\n\n" << s.description << "; T = " << s.duration
-      << " s. Every method at dt = 1/60 s:\n\n"
+    f << "### " << s.name << "\n\n"
+      << s.description << "; T = " << s.duration << " s. Every method at dt = 1/60 s:\n\n"
       << table_header();
     for (const Result& r : results) {
       if (r.scenario == s.name && r.dt_label == "1/60") f << table_row(r);
@@ -360,9 +365,8 @@ void write_goals(const std::string& out, const std::vector<Result>& results,
        "peer > 1e-3 rad.** `exact`: "
     << sci(exact->ori_T) << " rad (max over the run " << sci(exact->ori_max) << ") — "
     << (exact_accurate ? "met" : "MISSED") << ". Peers at the same dt:\n"
-    << peer_lines << "  Best peer " << best_peer_60_name << " at " << sci(best_peer_60)
-    << " rad — " << (peers_off ? "every peer is off by more than 1e-3 rad (met)" : "MISSED")
-    << ".\n";
+    << peer_lines << "  Best peer " << best_peer_60_name << " at " << sci(best_peer_60) << " rad — "
+    << (peers_off ? "every peer is off by more than 1e-3 rad (met)" : "MISSED") << ".\n";
 
   // Goal 2: cost per step and per simulated second against the cheapest accurate peer.
   const bool cheap_step = exact->ns_per_step <= 30.0;
@@ -375,8 +379,8 @@ void write_goals(const std::string& out, const std::vector<Result>& results,
   f << "2. **`exact` <= 30 ns per step and >= 10x cheaper per simulated second than the cheapest "
        "peer configuration reaching 1e-3 rad.** `exact` at dt = 1/60 s: "
     << fmt("%.1f", exact->ns_per_step) << " ns per step (fastest repetition "
-    << fmt("%.1f", exact->ns_per_step_min) << " ns) — " << (cheap_step ? "met" : "MISSED")
-    << "; " << fmt("%.3g", exact->ns_per_sim_second() / 1e3) << " us per simulated second.\n";
+    << fmt("%.1f", exact->ns_per_step_min) << " ns) — " << (cheap_step ? "met" : "MISSED") << "; "
+    << fmt("%.3g", exact->ns_per_sim_second() / 1e3) << " us per simulated second.\n";
   double ratio = NAN;
   if (cheapest) {
     ratio = cheapest->ns_per_sim_second() / exact->ns_per_sim_second();
@@ -522,6 +526,7 @@ int main(int argc, char** argv) {
   }
   const double elapsed =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  methods.clear();  // the ODE worlds must go before dCloseODE
   vg_bench::shutdown_peers();
 
   write_csv(o.out + "/results.csv", results);
