@@ -10,8 +10,9 @@ usage: scripts/benchmark.sh [--quick] [--no-install] [--skip-node] [--out DIR]
 
 Installs libbullet-dev libode-dev libmujoco-dev libbenchmark-dev gnuplot (with sudo when not
 root), builds benchmark/ in Release into build_benchmark/ (or $VG_BENCH_BUILD), runs the
-work-precision benchmark (a few minutes) and, when stone_node has been built, the node
-overhead measurement (scripts/node_overhead.sh), then writes into DIR (default
+work-precision benchmark (several minutes), builds the package into build/ (or $VG_BUILD) if
+stone_node is not there yet and measures the node overhead (scripts/node_overhead.sh, about a
+minute), then writes into DIR (default
 docs/benchmarks/): README.md (tables, machine, date), results.csv, work_precision_*.png,
 headline.md and node_overhead.md.
 
@@ -99,8 +100,12 @@ EOF
 done
 
 node_md=""
+if [ "$node" = 1 ] && [ ! -x "$VG_BUILD/devel/lib/virtual_go/stone_node" ]; then
+  # A fresh clone: build the package (scripts/setup.sh) so the node can be measured.
+  if [ "$install" = 1 ]; then vg_setup; else vg_configure_and_build; fi
+fi
 if [ "$node" = 1 ]; then
-  if "$VG_ROOT/scripts/node_overhead.sh" --out "$out/node_overhead.md"; then
+  if VG_BUILD="$VG_BUILD" "$VG_ROOT/scripts/node_overhead.sh" --out "$out/node_overhead.md"; then
     node_md="$out/node_overhead.md"
   else
     echo "benchmark.sh: node overhead not measured (see above)" >&2
