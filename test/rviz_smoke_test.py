@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """rviz smoke test: rviz with config/stone.rviz, on a private Xvfb display with Mesa's
 software renderer, shows the stone node's marker. A screenshot (import -window root) must
 contain stone-coloured (near-black) pixels in a stone-sized blob near the middle of the 3D
