@@ -1,4 +1,4 @@
-# bag_report: inspects rosbags of the stone node (docs/recording.md). Included by CMakeLists.txt.
+# bag_report: inspects rosbags of the stone node (README.md, "Recording, replay and bag_report"). Included by CMakeLists.txt.
 # The analysis (stamps, segments, prediction, checks, output) and the rosbag reader form a
 # library so the tests can call them directly; main() only wires them together.
 include_directories(${catkin_INCLUDE_DIRS})

@@ -11,7 +11,7 @@ usage: scripts/run.sh [ARG:=VALUE ...]
     scripts/run.sh config:=$PWD/config/tumble.yaml      the wobbling stone, no gravity
     scripts/run.sh record:=true bag:=$PWD/run.bag        also record a bag (default ./virtual_go.bag)
     scripts/run.sh rviz:=false                           headless even with a display
-  Stop with Ctrl-C. Topics, services and parameters: docs/ros_interface.md.
+  Stop with Ctrl-C. Topics, services and parameters: README.md, "The ROS node".
 USAGE
     exit 0
     ;;

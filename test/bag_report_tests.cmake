@@ -1,4 +1,4 @@
-# Tests of bag_report (docs/recording.md). Included by CMakeLists.txt inside CATKIN_ENABLE_TESTING.
+# Tests of bag_report (README.md, "Recording, replay and bag_report"). Included by CMakeLists.txt inside CATKIN_ENABLE_TESTING.
 
 # The analysis on plain data (no bag, no master).
 catkin_add_gtest(test_bag_analysis test/test_bag_analysis.cpp test/bag_test_bags.cpp)

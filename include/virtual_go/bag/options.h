@@ -10,7 +10,7 @@
 namespace virtual_go {
 namespace bag {
 
-// Exit codes (documented in --help and docs/recording.md).
+// Exit codes (documented in --help and README.md, "Recording, replay and bag_report").
 enum ExitCode : int {
   kExitOk = 0,            // report printed; with --strict every check passed
   kExitChecksFailed = 1,  // --strict and at least one figure over its limit
