@@ -17,11 +17,8 @@ USAGE
     ;;
 esac
 source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
-vg_setup >&2
-# setup.bash reads unset variables.
-set +u
-source "$VG_BUILD/devel/setup.bash"
-set -u
+vg_setup >&2 || exit 1
+vg_source_devel
 rviz=false
 if [ -n "${DISPLAY:-}" ]; then rviz=true; fi
 exec roslaunch virtual_go stone.launch rviz:="$rviz" "$@"

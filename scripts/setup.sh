@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Installs the Debian packages virtual_go needs (with sudo when not root), then configures and
 # builds the package into build/ (devel space build/devel). Safe to run again: it installs only
-# what is missing and rebuilds incrementally. Sourced by run.sh and test.sh; runnable alone.
-set -euo pipefail
+# what is missing and rebuilds incrementally. Sourced by run.sh and test.sh (the functions leave
+# the caller's shell options alone and return non-zero on failure); runnable alone.
 
 VG_ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 VG_BUILD="${VG_BUILD:-$VG_ROOT/build}"
@@ -28,9 +28,9 @@ vg_install_packages() {
   done
   if [ ${#missing[@]} -gt 0 ]; then
     echo "virtual_go: installing ${missing[*]}" >&2
-    vg_sudo env DEBIAN_FRONTEND=noninteractive apt-get update -qq
+    vg_sudo env DEBIAN_FRONTEND=noninteractive apt-get update -qq || return 1
     vg_sudo env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends \
-      "${missing[@]}" >&2
+      "${missing[@]}" >&2 || return 1
   fi
 }
 
@@ -54,11 +54,24 @@ vg_configure_and_build() {
 }
 
 vg_setup() {
-  vg_install_packages "${VG_PACKAGES[@]}"
+  vg_install_packages "${VG_PACKAGES[@]}" || return 1
   vg_configure_and_build "$@"
 }
 
+# The devel space's setup.bash reads unset variables: source it with nounset off.
+vg_source_devel() {
+  local nounset=0
+  case $- in *u*) nounset=1 ;; esac
+  set +u
+  # shellcheck disable=SC1091
+  source "$VG_BUILD/devel/setup.bash"
+  local status=$?
+  if [ $nounset -eq 1 ]; then set -u; fi
+  return $status
+}
+
 if [ "${BASH_SOURCE[0]}" = "$0" ]; then
+  set -euo pipefail
   case "${1:-}" in
     -h | --help)
       echo "usage: scripts/setup.sh   install Debian packages (sudo if not root), configure, build"

@@ -24,7 +24,7 @@ cmake --build "$VG_BUILD" --target tests -- -j"$(nproc)" || fail "a test binary 
 rm -rf "$VG_BUILD/test_results"
 # Sequential: rostests each start a master; the counter below reads every result file.
 (
-  source "$VG_BUILD/devel/setup.bash"
+  vg_source_devel || exit 1
   cmake --build "$VG_BUILD" --target run_tests -- -j1
 ) 2>&1 | tee "$VG_BUILD/run_tests.log" | grep -E "^\[ *(RUN|OK|FAILED|PASSED) |FAILURE|ERROR|Ran |^SUMMARY|^ \* RESULT" || true
 
