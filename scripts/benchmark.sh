@@ -205,13 +205,14 @@ EOF
   cat "$raw/goals.md"
   cat <<'EOF'
 
-Why goal 2's 30 ns can be missed: an `exact` step is the closed-form translation, two quaternion
-products, a normalisation of q (added in 5db0dfa so |q| stays 1 to an ulp between re-anchorings;
-about 9 ns of the step when measured separately on this machine, ~28 ns per step without it),
-the generic checks of `Integrator::advance` (finite state, unit input quaternion, finite
-output) and a virtual call. The first run of this benchmark, before that normalisation, measured
-24-25 ns per step here. Timings are bimodal on this shared 2-core machine (about 36 or 65 ns per
-step in the same run): compare the fastest-repetition column of results.csv.
+On goal 2's 30 ns: an `exact` step is the closed-form translation from the anchor, two
+precomputed quaternion products, a Newton renormalisation of q whose factor is computed off
+the step's critical path, the generic checks of `Integrator::advance` (finite state, unit input
+quaternion, finite output) and a virtual call: about 360 instructions (valgrind's callgrind).
+A plain loop of `advance()` measures 24-25 ns per step on this machine; inside the harness the
+per-repetition times are bimodal on this shared 2-core VM (the same work at about 25 or 45-70 ns
+in one run), so the median can miss the goal while the fastest repetition meets it: compare the
+fastest-repetition column of results.csv.
 
 ## Reading the results
 
