@@ -10,7 +10,7 @@ usage: scripts/benchmark.sh [--quick] [--no-install] [--skip-node] [--out DIR]
 
 Installs libbullet-dev libode-dev libmujoco-dev libbenchmark-dev gnuplot (with sudo when not
 root), builds benchmark/ in Release into build_benchmark/ (or $VG_BENCH_BUILD), runs the
-work-precision benchmark (several minutes), builds the package into build/ (or $VG_BUILD) if
+work-precision benchmark (several minutes), builds the package into build_catkin/ (or $VG_BUILD) if
 stone_node is not there yet and measures the node overhead (scripts/node_overhead.sh, about a
 minute), then writes into DIR (default
 docs/benchmarks/): README.md (tables, machine, date), results.csv, work_precision_*.png,

@@ -8,7 +8,7 @@ usage() {
   cat <<'EOF'
 usage: scripts/node_overhead.sh [--window SECONDS] [--rates "60 1000"] [--out FILE]
 
-Runs build/devel/lib/virtual_go/stone_node (or $VG_BUILD/devel/...; build it first with
+Runs build_catkin/devel/lib/virtual_go/stone_node (or $VG_BUILD/devel/...; build it first with
 scripts/setup.sh) named `stone` with config/stone.yaml and ~rate overridden, once per rate and
 subscriber mode, for a fixed window (default 10 s), and writes a Markdown table (default
 docs/benchmarks/node_overhead.md):
@@ -22,7 +22,7 @@ EOF
 }
 
 VG_ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-VG_BUILD="${VG_BUILD:-$VG_ROOT/build}"
+VG_BUILD="${VG_BUILD:-$VG_ROOT/build_catkin}"
 window=10
 rates="60 1000"
 out="$VG_ROOT/docs/benchmarks/node_overhead.md"

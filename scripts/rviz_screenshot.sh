@@ -16,7 +16,7 @@ case "${1:-}" in
   "") usage >&2; exit 2 ;;
 esac
 VG_ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-VG_BUILD="${VG_BUILD:-$VG_ROOT/build}"
+VG_BUILD="${VG_BUILD:-$VG_ROOT/build_catkin}"
 out="$(realpath -m "$1")"
 config="$(realpath "${2:-$VG_ROOT/config/stone.yaml}")"
 seconds="${3:-12}"

@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
 # Installs the Debian packages virtual_go needs (with sudo when not root), then configures and
-# builds the package into build/ (devel space build/devel). Safe to run again: it installs only
-# what is missing and rebuilds incrementally. Sourced by run.sh and test.sh (the functions leave
+# builds the package into build_catkin/ (devel space build_catkin/devel). Not build/: rosrun
+# skips executables below <package>/build/, and the repository root is the package. Safe to
+# run again: it installs only what is missing and rebuilds incrementally. Sourced by run.sh and test.sh (the functions leave
 # the caller's shell options alone and return non-zero on failure); runnable alone.
 
 VG_ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-VG_BUILD="${VG_BUILD:-$VG_ROOT/build}"
+VG_BUILD="${VG_BUILD:-$VG_ROOT/build_catkin}"
 
 # Debian 12's system ROS 1 (no /opt/ros) plus the tools the tests use.
 VG_PACKAGES=(
