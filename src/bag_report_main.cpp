@@ -1,5 +1,6 @@
 // bag_report: figures, a CSV and a plot from a rosbag of the virtual_go stone node.
-// See --help and README.md, "Recording, replay and bag_report". Every failure is one line on stderr and an exit code.
+// See --help and README.md, "Recording, replay and bag_report". Every failure is one line on stderr
+// and an exit code.
 #include <exception>
 #include <iostream>
 
