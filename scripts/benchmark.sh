@@ -76,7 +76,8 @@ compiler="$(c++ --version | head -1)"
 args=(--out "$raw")
 [ "$quick" = 1 ] && args+=(--quick --budget 0.005 --timed-steps 4096)
 echo "benchmark.sh: running work_precision ${args[*]} (progress below)" >&2
-"$build/work_precision" "${args[@]}"
+# From the build dir: MuJoCo writes MUJOCO_LOG.TXT into the working directory on warnings.
+(cd "$build" && ./work_precision "${args[@]}")
 load_after="$(cut -d' ' -f1-3 /proc/loadavg)"
 echo "$date_utc|$cpu|$cores|$compiler|$load_before|$load_after" >"$raw/machine.txt"
 fi

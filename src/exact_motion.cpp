@@ -1,5 +1,6 @@
 #include "virtual_go/exact_motion.h"
 
+#include "virtual_go/free_flight.h"
 #include "virtual_go/rotation.h"
 #include "virtual_go/validation.h"
 
@@ -39,9 +40,7 @@ Eigen::Quaterniond ExactMotion::right_rotation(double h) const {
 RigidBodyState ExactMotion::state_at(double t) const {
   require_finite("time", t);
   RigidBodyState s = initial_;
-  const Eigen::Vector3d& g = setup_.gravity_world;
-  s.position_world = initial_.position_world + t * initial_.velocity_world + (0.5 * t * t) * g;
-  s.velocity_world = initial_.velocity_world + t * g;
+  free_flight(initial_, setup_.gravity_world, true, t, s);
   s.orientation = left_rotation(t) * initial_.orientation * right_rotation(t);
   s.orientation.normalize();
   if (!s.position_world.allFinite() || !s.velocity_world.allFinite()) {

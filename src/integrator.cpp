@@ -5,6 +5,7 @@
 
 #include "virtual_go/euler_integrator.h"
 #include "virtual_go/exact_integrator.h"
+#include "virtual_go/free_flight.h"
 #include "virtual_go/rk4_integrator.h"
 #include "virtual_go/splitting_integrator.h"
 #include "virtual_go/validation.h"
@@ -49,12 +50,7 @@ void Integrator::advance(RigidBodyState& state, double dt) {
 }
 
 void Integrator::translate_exact(RigidBodyState& state, double dt) const {
-  if (has_gravity_) {
-    state.position_world += dt * state.velocity_world + (0.5 * dt * dt) * setup_.gravity_world;
-    state.velocity_world += dt * setup_.gravity_world;
-  } else if (!state.velocity_world.isZero(0.0)) {
-    state.position_world += dt * state.velocity_world;
-  }
+  free_flight(state, setup_.gravity_world, has_gravity_, dt, state);
 }
 
 std::unique_ptr<Integrator> make_integrator(const std::string& name, const MotionSetup& setup) {
@@ -62,7 +58,9 @@ std::unique_ptr<Integrator> make_integrator(const std::string& name, const Motio
   if (name == "rk4") return std::make_unique<Rk4Integrator>(setup);
   if (name == "splitting") return std::make_unique<SplittingIntegrator>(setup);
   if (name == "exact") return std::make_unique<ExactIntegrator>(setup);
-  throw InvalidArgument("unknown integrator '" + name + "' (known: euler rk4 splitting exact)");
+  std::string known;
+  for (const std::string& n : integrator_names()) known += " " + n;
+  throw InvalidArgument("unknown integrator '" + name + "' (known:" + known + ")");
 }
 
 std::vector<std::string> integrator_names() { return {"euler", "rk4", "splitting", "exact"}; }

@@ -1,6 +1,8 @@
 // Closed-form stepping: for a fixed dt a step is the exact translation and two precomputed
 // quaternion products, q <- A q B. Every kReanchorSteps steps the state is re-evaluated from
-// the closed form at n * dt so round-off from many products cannot accumulate.
+// the closed form at n * dt, so the products' round-off never exceeds that of kReanchorSteps
+// of them. What remains is the closed form's own: the rotation angle |w| t is a double, so
+// the error grows as eps |w| t (about 2e-10 rad after 1e7 steps of 1/60 s at 45 rad/s).
 #pragma once
 
 #include <cstdint>

@@ -22,7 +22,11 @@ class Integrator {
   virtual ~Integrator() = default;
 
   virtual std::string name() const = 0;
-  // Advances `state` by dt seconds (dt > 0, finite). On error throws and leaves state unchanged.
+  // Advances `state` by dt seconds (dt > 0, finite). On error throws and leaves state unchanged:
+  // InvalidArgument (naming the field) for a non-finite state, a zero quaternion or a bad dt,
+  // IntegrationError when the step cannot be taken. A finite, non-zero orientation that is not
+  // unit is normalised first (as RigidBodyState::validated() does), so the step starts from a
+  // rotation; the output quaternion is always unit.
   void advance(RigidBodyState& state, double dt);
   // Largest h * |omega| (rad) one step may take; infinity when any step is fine.
   virtual double max_rotation_per_step() const;
