@@ -139,6 +139,9 @@ PhysicsResult check_physics(const RecordingInfo& info, const std::vector<OdomSam
     }
     std::vector<RigidBodyState> states;
     states.reserve(seg.samples);
+    // Momentum drift is relative to |L0|. A segment that starts without spin has no such
+    // scale: the largest |L| of the segment stands in, so spin appearing from rest reads 1.
+    const bool l0_zero = l0.norm() == 0.0;
     double l_scale = l0.norm();
     for (std::size_t i = seg.plan.first; i < seg.plan.end; ++i) {
       try {
@@ -150,7 +153,7 @@ PhysicsResult check_physics(const RecordingInfo& info, const std::vector<OdomSam
       }
       const RigidBody body(model, states.back());
       scale = std::max(scale, energy_scale(body, info.gravity));
-      l_scale = std::max(l_scale, states.back().angular_momentum_world.norm());
+      if (l0_zero) l_scale = std::max(l_scale, states.back().angular_momentum_world.norm());
     }
 
     for (std::size_t j = 0; j < states.size(); ++j) {

@@ -159,6 +159,20 @@ TEST(CheckPhysics, DetectsOrientationAndPositionErrors) {
   EXPECT_LT(r.samples[8].orientation_error, 1e-12) << "normalised before comparing";
 }
 
+TEST(CheckPhysics, MomentumDriftIsRelativeToTheFirstL) {
+  std::vector<vb::OdomSample> odom{odom_at(0, 0.0), odom_at(20 * kMs, 0.02)};
+  odom[1].angular_velocity_body *= 3.0;  // |L| = 3 |L0|: drift 2 against |L0| (not 2/3)
+  const vb::PhysicsResult r = vb::check_physics(info(), odom, {});
+  EXPECT_NEAR(r.samples[1].momentum_drift, 2.0, 1e-9);
+
+  // Starting at rest there is no |L0|: the segment's largest |L| is the scale instead.
+  odom[0].angular_velocity_body.setZero();
+  odom[1].angular_velocity_body.setZero();
+  EXPECT_EQ(vb::check_physics(info(), odom, {}).segments[0].max_momentum_drift, 0.0);
+  odom[1].angular_velocity_body = {0.0, 0.0, 5.0};
+  EXPECT_NEAR(vb::check_physics(info(), odom, {}).samples[1].momentum_drift, 1.0, 1e-12);
+}
+
 TEST(CheckPhysics, BadInfoIsRejected) {
   vb::RecordingInfo bad = info();
   bad.model = "quantum";

@@ -44,7 +44,7 @@ struct PhysicsSample {
   double t_s = 0.0;                // since the segment's start
   double quat_norm_error = 0.0;    // | |q| - 1 | of the recorded quaternion
   double energy_drift = 0.0;       // |E - E0| / energy scale of the segment
-  double momentum_drift = 0.0;     // |L - L0| / |L0| (world frame)
+  double momentum_drift = 0.0;     // |L - L0| / |L0| (world); L0 = 0: / max |L| of the segment
   double orientation_error = 0.0;  // rad vs the closed form; NaN when there is no prediction
   double position_error = 0.0;     // m vs the closed form; NaN when there is no prediction
   double angular_speed = 0.0;      // |omega|, rad/s
