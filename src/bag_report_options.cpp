@@ -19,6 +19,7 @@ double parse_limit(const std::string& option, const std::string& text) {
 }  // namespace
 
 std::string usage_text() {
+  // The limits come from the constants in thresholds.cpp, so the two cannot disagree.
   return R"(usage: bag_report BAG [--csv OUT.csv] [--plot OUT.png] [--strict] [options]
 
 Inspects a rosbag recorded from the virtual_go stone node: per topic message count, mean rate,
@@ -37,19 +38,13 @@ options:
   --max-position-error M      m
   --max-energy-drift X        relative to the segment's energy scale
   --max-momentum-drift X      relative to |L0|
-  --max-quat-norm-error X     default 1e-9
+  --max-quat-norm-error X     (defaults below)
   --max-gaps N                gaps allowed per periodic topic (default 0)
   --rate-tolerance X          allowed |mean rate / ~info rate - 1| (default 0.1)
   -h, --help                  this text
 
-default limits (h = dt, w = largest |omega| of the segment, T = its duration):
-  exact      orientation 1e-9 rad, position 1e-9 m, energy and momentum drift 1e-9
-  splitting  orientation 1e-9 + 2 (h w)^2 w T,    energy 1e-9 + 0.02 (h w)^2 (1 + w T)
-  rk4        orientation 1e-9 + 0.1 (h w)^4 w T,  energy 1e-9 + 0.02 (h w)^4 (1 + w T)
-  euler      orientation 1e-9 + 5 (h w) w T,      energy 1e-9 + 0.5 (h w) (1 + w T),
-             position + 1.01 |g| h T / 2
-  all        momentum drift 1e-9, | |q| - 1 | 1e-9, position 1e-9 m + 1e-12 |x|
-
+)" + default_limits_text() +
+         R"(
 exit codes: 0 ok; 1 --strict and a figure over its limit; 2 bad command line; 3 bag unreadable
 (missing, not a bag, truncated); 4 partial report (empty bag, no ~info or ~odom, reading stopped
 early); 5 --csv or --plot could not be written.

@@ -1,4 +1,5 @@
 #include <cmath>
+#include <iomanip>
 #include <sstream>
 
 #include "virtual_go/bag/thresholds.h"
@@ -7,23 +8,6 @@
 namespace virtual_go {
 namespace bag {
 namespace {
-
-struct IntegratorConstants {
-  int order;
-  double k_orientation;
-  double k_energy;
-};
-
-// See thresholds.h for where these come from.
-std::optional<IntegratorConstants> constants_for(const std::string& integrator) {
-  if (integrator == "exact") return IntegratorConstants{0, 0.0, 0.0};
-  if (integrator == "splitting") return IntegratorConstants{2, 2.0, 0.02};
-  if (integrator == "rk4") return IntegratorConstants{4, 0.1, 0.02};
-  if (integrator == "euler") return IntegratorConstants{1, 5.0, 0.5};
-  return std::nullopt;
-}
-
-constexpr double kFloor = 1e-9;
 
 std::string format_short(double v) {
   std::ostringstream out;
@@ -34,25 +18,66 @@ std::string format_short(double v) {
 
 }  // namespace
 
+const std::vector<IntegratorBound>& integrator_bounds() {
+  // The single source of these constants: --help prints them, README.md's table restates them
+  // (test_bag_analysis compares). K_q, K_E: about 4-10x the worst value measured for the
+  // default stone (see thresholds.h). K_g: the article's Euler (v += g h; x += v h) is off by
+  // exactly g h t / 2, with 1 % to spare.
+  static const std::vector<IntegratorBound> bounds{
+      {"euler", 1, 5.0, 0.5, 1.01},
+      {"rk4", 4, 0.1, 0.02, 0.0},
+      {"splitting", 2, 2.0, 0.02, 0.0},
+      {"exact", 0, 0.0, 0.0, 0.0},
+  };
+  return bounds;
+}
+
+const IntegratorBound* integrator_bound(const std::string& integrator) {
+  for (const IntegratorBound& b : integrator_bounds()) {
+    if (b.integrator == integrator) return &b;
+  }
+  return nullptr;
+}
+
+std::string default_limits_text() {
+  std::ostringstream out;
+  out << "default limits (h = dt, w = largest |omega| of the segment, T = its duration;\n"
+      << "p and K from the table below, by the integrator named in ~info):\n"
+      << "  orientation error  " << kBoundFloor << " rad + K_q (h w)^p w T\n"
+      << "  energy drift       " << kBoundFloor << " + K_E (h w)^p (1 + w T)\n"
+      << "  position error     " << kBoundFloor << " m + " << kPositionRoundOff
+      << " |x| + K_g |g| h T / 2\n"
+      << "  momentum drift     " << kBoundFloor << "\n"
+      << "  | |q| - 1 |        " << kBoundFloor << "\n\n"
+      << "  " << std::left << std::setw(12) << "integrator" << std::setw(4) << "p" << std::setw(8)
+      << "K_q" << std::setw(8) << "K_E"
+      << "K_g\n";
+  for (const IntegratorBound& b : integrator_bounds()) {
+    out << "  " << std::left << std::setw(12) << b.integrator << std::setw(4) << b.order
+        << std::setw(8) << b.k_orientation << std::setw(8) << b.k_energy << b.k_gravity << "\n";
+  }
+  return out.str();
+}
+
 PhysicsBounds physics_bounds(const std::string& integrator, double dt, const SegmentResult& segment,
                              double gravity_norm, const LimitOverrides& overrides) {
   PhysicsBounds b;
   const bool all_overridden = overrides.orientation_error && overrides.position_error &&
                               overrides.energy_drift && overrides.momentum_drift;
-  const std::optional<IntegratorConstants> c = constants_for(integrator);
-  if (!c && !all_overridden) {
+  const IntegratorBound* c = integrator_bound(integrator);
+  if (c == nullptr && !all_overridden) {
     throw InvalidArgument("no error bound known for integrator '" + integrator +
                           "' (known: euler rk4 splitting exact); pass --max-orientation-error, "
                           "--max-position-error, --max-energy-drift and --max-momentum-drift");
   }
   const double w = segment.max_angular_speed, t = segment.duration_s;
   const double hw_p = c && c->order > 0 ? std::pow(dt * w, c->order) : 0.0;
-  b.orientation_error = kFloor + (c ? c->k_orientation * hw_p * w * t : 0.0);
-  b.energy_drift = kFloor + (c ? c->k_energy * hw_p * (1.0 + w * t) : 0.0);
-  b.momentum_drift = kFloor;
-  b.position_error = kFloor + 1e-12 * segment.max_abs_position;
-  if (integrator == "euler") b.position_error += 1.01 * 0.5 * gravity_norm * dt * t;
-  b.quat_norm_error = kFloor;
+  b.orientation_error = kBoundFloor + (c ? c->k_orientation * hw_p * w * t : 0.0);
+  b.energy_drift = kBoundFloor + (c ? c->k_energy * hw_p * (1.0 + w * t) : 0.0);
+  b.momentum_drift = kBoundFloor;
+  b.position_error = kBoundFloor + kPositionRoundOff * segment.max_abs_position;
+  if (c) b.position_error += c->k_gravity * 0.5 * gravity_norm * dt * t;
+  b.quat_norm_error = kBoundFloor;
   b.basis = integrator + ", dt " + format_short(dt) + " s, |w| " + format_short(w) + " rad/s, T " +
             format_short(t) + " s";
 

@@ -3,6 +3,8 @@
 # The analysis on plain data (no bag, no master).
 catkin_add_gtest(test_bag_analysis test/test_bag_analysis.cpp test/bag_test_bags.cpp)
 target_link_libraries(test_bag_analysis virtual_go_bag_report GTest::gtest_main)
+# Checks README.md's table of error-bound constants against the code.
+target_compile_definitions(test_bag_analysis PRIVATE VG_README="${PROJECT_SOURCE_DIR}/README.md")
 
 # The real binary on bags the test writes with the rosbag C++ API.
 catkin_add_gtest(test_bag_report_cli test/test_bag_report_cli.cpp test/bag_test_bags.cpp)

@@ -2,6 +2,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <map>
+#include <sstream>
 
 #include "bag_test_bags.h"
 #include "virtual_go/bag/options.h"
@@ -205,6 +209,35 @@ TEST(Thresholds, BoundsFollowTheIntegrator) {
   vb::LimitOverrides given;
   given.orientation_error = 0.5;
   EXPECT_EQ(vb::physics_bounds("exact", 1e-3, seg, g, given).orientation_error, 0.5);
+}
+
+// README.md restates the constants for readers; this keeps it honest.
+TEST(Thresholds, ReadmeTableMatchesTheCode) {
+  std::ifstream readme(VG_README);
+  ASSERT_TRUE(readme) << VG_README;
+  std::map<std::string, std::vector<double>> rows;
+  std::string line;
+  while (std::getline(readme, line)) {
+    if (line.rfind("| ", 0) != 0) continue;
+    std::vector<std::string> cells;
+    std::stringstream in(line.substr(1));
+    std::string cell;
+    while (std::getline(in, cell, '|')) cells.push_back(cell);
+    if (cells.size() != 5) continue;
+    const std::string name = cells[0].substr(1, cells[0].size() - 2);
+    if (vb::integrator_bound(name) == nullptr) continue;
+    for (std::size_t i = 1; i < cells.size(); ++i) {
+      rows[name].push_back(std::strtod(cells[i].c_str(), nullptr));  // "0 (so ...)" reads 0
+    }
+  }
+  for (const vb::IntegratorBound& b : vb::integrator_bounds()) {
+    ASSERT_EQ(rows[b.integrator].size(), 4u) << "no README row for " << b.integrator;
+    const std::vector<double>& r = rows[b.integrator];
+    EXPECT_EQ(r[0], b.order) << b.integrator;
+    EXPECT_EQ(r[1], b.k_orientation) << b.integrator;
+    EXPECT_EQ(r[2], b.k_energy) << b.integrator;
+    EXPECT_EQ(r[3], b.k_gravity) << b.integrator;
+  }
 }
 
 TEST(Thresholds, NanFigureFails) {
