@@ -1,8 +1,10 @@
+#include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <sstream>
 
 #include "virtual_go/bag/thresholds.h"
+#include "virtual_go/integrator.h"
 #include "virtual_go/validation.h"
 
 namespace virtual_go {
@@ -14,6 +16,12 @@ std::string format_short(double v) {
   out.precision(3);
   out << v;
   return out.str();
+}
+
+std::string known_integrators() {
+  std::string list;
+  for (const std::string& name : integrator_names()) list += (list.empty() ? "" : " ") + name;
+  return list;
 }
 
 }  // namespace
@@ -52,9 +60,15 @@ std::string default_limits_text() {
       << "  " << std::left << std::setw(12) << "integrator" << std::setw(4) << "p" << std::setw(8)
       << "K_q" << std::setw(8) << "K_E"
       << "K_g\n";
-  for (const IntegratorBound& b : integrator_bounds()) {
-    out << "  " << std::left << std::setw(12) << b.integrator << std::setw(4) << b.order
-        << std::setw(8) << b.k_orientation << std::setw(8) << b.k_energy << b.k_gravity << "\n";
+  for (const std::string& name : integrator_names()) {
+    out << "  " << std::left << std::setw(12) << name;
+    const IntegratorBound* b = integrator_bound(name);
+    if (b == nullptr) {
+      out << "no default: pass every --max-* option\n";
+      continue;
+    }
+    out << std::setw(4) << b->order << std::setw(8) << b->k_orientation << std::setw(8)
+        << b->k_energy << b->k_gravity << "\n";
   }
   return out.str();
 }
@@ -66,9 +80,13 @@ PhysicsBounds physics_bounds(const std::string& integrator, double dt, const Seg
                               overrides.energy_drift && overrides.momentum_drift;
   const IntegratorBound* c = integrator_bound(integrator);
   if (c == nullptr && !all_overridden) {
-    throw InvalidArgument("no error bound known for integrator '" + integrator +
-                          "' (known: euler rk4 splitting exact); pass --max-orientation-error, "
-                          "--max-position-error, --max-energy-drift and --max-momentum-drift");
+    const std::vector<std::string> names = integrator_names();
+    const bool known = std::find(names.begin(), names.end(), integrator) != names.end();
+    throw InvalidArgument(
+        std::string(known ? "no error bound known for integrator '" : "unknown integrator '") +
+        integrator + "' in ~info (known: " + known_integrators() +
+        "); pass --max-orientation-error, --max-position-error, "
+        "--max-energy-drift and --max-momentum-drift");
   }
   const double w = segment.max_angular_speed, t = segment.duration_s;
   const double hw_p = c && c->order > 0 ? std::pow(dt * w, c->order) : 0.0;

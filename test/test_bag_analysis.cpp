@@ -1,6 +1,7 @@
 // bag_report's analysis units on plain data: no bag, no master.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -13,6 +14,7 @@
 #include "virtual_go/bag/report.h"
 #include "virtual_go/bag/stamp_statistics.h"
 #include "virtual_go/bag/thresholds.h"
+#include "virtual_go/integrator.h"
 #include "virtual_go/validation.h"
 
 namespace vb = virtual_go::bag;
@@ -209,6 +211,24 @@ TEST(Thresholds, BoundsFollowTheIntegrator) {
   vb::LimitOverrides given;
   given.orientation_error = 0.5;
   EXPECT_EQ(vb::physics_bounds("exact", 1e-3, seg, g, given).orientation_error, 0.5);
+}
+
+TEST(Thresholds, EveryIntegratorHasABound) {
+  const std::vector<std::string> names = virtual_go::integrator_names();
+  for (const std::string& name : names) {
+    EXPECT_NE(vb::integrator_bound(name), nullptr) << name;
+    EXPECT_NE(vb::default_limits_text().find("  " + name + " "), std::string::npos) << name;
+  }
+  for (const vb::IntegratorBound& b : vb::integrator_bounds()) {
+    EXPECT_NE(std::find(names.begin(), names.end(), b.integrator), names.end()) << b.integrator;
+  }
+  try {
+    vb::physics_bounds("leapfrog", 1e-3, vb::SegmentResult{}, 9.8, vb::LimitOverrides{});
+    ADD_FAILURE() << "no throw";
+  } catch (const virtual_go::InvalidArgument& e) {
+    EXPECT_NE(std::string(e.what()).find("known: euler rk4 splitting exact"), std::string::npos)
+        << e.what();
+  }
 }
 
 // README.md restates the constants for readers; this keeps it honest.
