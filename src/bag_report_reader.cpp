@@ -5,6 +5,7 @@
 #include <rosbag/exceptions.h>
 #include <rosbag/view.h>
 #include <sys/stat.h>
+#include <tf2_eigen/tf2_eigen.h>
 #include <tf2_msgs/TFMessage.h>
 #include <virtual_go/StoneEvent.h>
 #include <virtual_go/StoneInfo.h>
@@ -26,10 +27,6 @@ constexpr char kOdomType[] = "nav_msgs/Odometry";
 constexpr char kTfType[] = "tf2_msgs/TFMessage";
 
 std::int64_t to_ns(const ros::Time& t) { return static_cast<std::int64_t>(t.toNSec()); }
-
-Eigen::Vector3d to_eigen(const geometry_msgs::Vector3& v) { return {v.x, v.y, v.z}; }
-Eigen::Vector3d to_eigen(const geometry_msgs::Point& p) { return {p.x, p.y, p.z}; }
-Eigen::Quaterniond to_eigen(const geometry_msgs::Quaternion& q) { return {q.w, q.x, q.y, q.z}; }
 
 std::string normalise_namespace(std::string ns) {
   while (!ns.empty() && ns.back() == '/') ns.pop_back();
@@ -191,13 +188,13 @@ class Reader {
     info.world_frame = msg->world_frame.empty() ? "world" : msg->world_frame;
     info.stone_frame = msg->stone_frame.empty() ? "stone" : msg->stone_frame;
     info.mass = msg->mass;
-    info.principal_moments = to_eigen(msg->principal_moments);
+    tf2::fromMsg(msg->principal_moments, info.principal_moments);
     info.model = msg->model;
     info.integrator = msg->integrator;
     info.dt = msg->dt;
     info.dt_ns = msg->dt_ns;
     info.rate = msg->rate;
-    info.gravity = to_eigen(msg->gravity);
+    tf2::fromMsg(msg->gravity, info.gravity);
     out_.info = info;
   }
 
@@ -206,10 +203,11 @@ class Reader {
     if (!msg) return;
     OdomSample s;
     s.stamp_ns = to_ns(msg->header.stamp);
-    s.position_world = to_eigen(msg->pose.pose.position);
-    s.orientation_raw = to_eigen(msg->pose.pose.orientation);
-    s.velocity_body = to_eigen(msg->twist.twist.linear);
-    s.angular_velocity_body = to_eigen(msg->twist.twist.angular);
+    tf2::fromMsg(msg->pose.pose.position, s.position_world);
+    // tf2_eigen copies the components: | |q| - 1 | is measured on the quaternion as recorded.
+    tf2::fromMsg(msg->pose.pose.orientation, s.orientation_raw);
+    tf2::fromMsg(msg->twist.twist.linear, s.velocity_body);
+    tf2::fromMsg(msg->twist.twist.angular, s.angular_velocity_body);
     out_.odom.push_back(s);
   }
 
@@ -220,10 +218,10 @@ class Reader {
     e.stamp_ns = to_ns(msg->header.stamp);
     e.segment = msg->segment;
     e.reason = msg->reason;
-    e.position_world = to_eigen(msg->pose.position);
-    e.orientation = to_eigen(msg->pose.orientation);
-    e.velocity_world = to_eigen(msg->twist.linear);
-    e.angular_momentum_world = to_eigen(msg->angular_momentum);
+    tf2::fromMsg(msg->pose.position, e.position_world);
+    tf2::fromMsg(msg->pose.orientation, e.orientation);
+    tf2::fromMsg(msg->twist.linear, e.velocity_world);
+    tf2::fromMsg(msg->angular_momentum, e.angular_momentum_world);
     out_.events.push_back(e);
   }
 
