@@ -3,6 +3,7 @@
 
 #include <cstdio>
 #include <cstring>
+#include <exception>
 
 #include "virtual_go/ros/stone_node.h"
 
@@ -22,6 +23,11 @@ int main(int argc, char** argv) {
     ros::spin();
   } catch (const virtual_go::ConfigError& e) {
     ROS_FATAL("stone_node: invalid parameter %s", e.what());
+    return 1;
+  } catch (const std::exception& e) {
+    // Anything else (roscpp, tf2, the core) must still end with a message and a failure code,
+    // not std::terminate.
+    ROS_FATAL("stone_node: %s", e.what());
     return 1;
   }
   return 0;

@@ -30,6 +30,14 @@ void expect_refused(const std::string& param, const std::function<void(vg::Stone
 
 TEST(StoneConfig, DefaultsAreValid) { EXPECT_NO_THROW(vg::validate_config(vg::StoneConfig())); }
 
+TEST(StoneConfig, RateBoundsAreInclusive) {
+  for (double rate : {vg::kMinRate, vg::kMaxRate}) {
+    vg::StoneConfig config;
+    config.rate = rate;
+    EXPECT_NO_THROW(vg::validate_config(config)) << rate;
+  }
+}
+
 TEST(StoneConfig, DtMustBeAWholeNumberOfNanoseconds) {
   EXPECT_EQ(vg::dt_to_ns(0.001), 1000000);
   EXPECT_EQ(vg::dt_to_ns(0.001666666), 1666666);  // 0.001666666 s
@@ -50,6 +58,12 @@ TEST(StoneConfig, DtMustBeAWholeNumberOfNanoseconds) {
 TEST(StoneConfig, EachBadParameterIsNamed) {
   expect_refused("rate", [](vg::StoneConfig& c) { c.rate = 0.0; });
   expect_refused("rate", [](vg::StoneConfig& c) { c.rate = kNaN; });
+  // The timer period 1 / rate: too long for ros::Duration, or rounding to 0 ns (busy loop).
+  expect_refused("rate", [](vg::StoneConfig& c) { c.rate = 1e-12; });
+  expect_refused("rate", [](vg::StoneConfig& c) { c.rate = 0.0009; });
+  expect_refused("rate", [](vg::StoneConfig& c) { c.rate = 10001.0; });
+  expect_refused("rate", [](vg::StoneConfig& c) { c.rate = 1e12; });
+  expect_refused("rate", [](vg::StoneConfig& c) { c.rate = kInf; });
   expect_refused("dt", [](vg::StoneConfig& c) { c.dt = 1.0 / 3000.0; });
   expect_refused("model", [](vg::StoneConfig& c) { c.model = "newtonian"; });
   expect_refused("integrator", [](vg::StoneConfig& c) { c.integrator = "verlet"; });

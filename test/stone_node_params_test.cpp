@@ -41,6 +41,9 @@ TEST(StoneNodeParams, InvalidParametersAreFatalAndNamed) {
   const Case cases[] = {
       {"dt_fraction", "_dt:=0.0009765625", "~dt: must be a whole number of nanoseconds"},
       {"rate", "_rate:=-5.0", "~rate:"},
+      // Used to abort in ros::Duration (period too long) or busy-loop (period 0 ns).
+      {"rate_tiny", "_rate:=1.0e-12", "~rate: must be between"},
+      {"rate_huge", "_rate:=1.0e12", "~rate: must be between"},
       {"model", "_model:=newtonian", "~model:"},
       {"integrator", "_integrator:=verlet", "~integrator:"},
       {"gravity", "_gravity:=[0.0,0.0]", "~gravity: must be a list of 3 numbers"},

@@ -26,7 +26,7 @@ Services (changes take effect at the next physics step, which starts a new segme
   ~set_state             virtual_go/SetState: pose and twist in the world frame
 
 Parameters (defaults in brackets):
-  ~rate                  publish rate, Hz [60]
+  ~rate                  publish rate, Hz, 0.001 to 10000 [60]
   ~dt                    physics step, s, a whole number of ns, >= 1e-6 [0.001]
   ~model                 constant_omega | rigid_body [rigid_body]
   ~integrator            euler | rk4 | splitting | exact [exact]

@@ -49,7 +49,10 @@ std::int64_t dt_to_ns(double dt) {
 }
 
 void validate_config(const StoneConfig& c) {
-  require_positive_param("rate", c.rate, "Hz");
+  if (!(c.rate >= kMinRate && c.rate <= kMaxRate)) {  // also refuses NaN
+    fail("rate", "must be between " + format_value(kMinRate) + " and " + format_value(kMaxRate) +
+                     " Hz, got " + format_value(c.rate));
+  }
   dt_to_ns(c.dt);
   try {
     motion_model_from_name(c.model);

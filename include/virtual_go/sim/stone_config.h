@@ -19,6 +19,10 @@ class ConfigError : public InvalidArgument {
 };
 
 constexpr std::int64_t kMinDtNs = 1000;  // 1 us: smaller steps cannot keep up with real time
+// ~rate bounds, Hz. The timer period 1 / rate must be a valid ros::Duration (it throws beyond
+// ~68 years) and not round to 0 ns (a busy loop); this range keeps it between 0.1 ms and 1000 s.
+constexpr double kMinRate = 0.001;
+constexpr double kMaxRate = 10000.0;
 
 struct StoneConfig {
   double rate = 60.0;  // Hz, publish rate
