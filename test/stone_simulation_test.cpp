@@ -189,6 +189,36 @@ TEST(StoneSimulation, IntegrationFailureHoldsTheStateAndResetRecovers) {
   EXPECT_TRUE(after.advanced);
 }
 
+TEST(StoneSimulation, PersistentIntegrationFailurePublishesNothingUntilRecovered) {
+  vg::StoneConfig c;
+  c.initial_position = Eigen::Vector3d(1.79e308, 0, 0);
+  c.initial_velocity = Eigen::Vector3d(1.7e308, 0, 0);
+  vg::StoneSimulation sim(c);
+  sim.update(kStart);
+  EXPECT_FALSE(sim.update(kStart + 100 * kMs).error.empty());
+  const vg::RigidBodyState held = sim.state();
+  // Long enough for the stopped clock to fall more than its max lag (1 s) behind: the time
+  // jump must not re-stamp the held state as a new one.
+  std::int64_t now = kStart + 100 * kMs;
+  for (int tick = 0; tick < 200; ++tick) {
+    now += 16 * kMs;
+    const vg::UpdateResult r = sim.update(now);
+    EXPECT_FALSE(r.advanced) << "tick " << tick;
+    EXPECT_TRUE(r.events.empty()) << "tick " << tick;
+  }
+  EXPECT_TRUE(sim.state() == held);
+
+  sim.set_state(Eigen::Vector3d::Zero(), Eigen::Vector4d(0, 0, 0, 1), Eigen::Vector3d::Zero(),
+                Eigen::Vector3d::Zero());
+  const vg::UpdateResult after = sim.update(now + 16 * kMs);
+  EXPECT_TRUE(after.error.empty());
+  EXPECT_TRUE(after.advanced);
+  ASSERT_EQ(after.events.size(), 1u);
+  EXPECT_EQ(after.events[0].reason, vg::EventReason::set_state);
+  EXPECT_GT(after.events[0].stamp_ns, now - 1000 * kMs);  // on the current time line
+  EXPECT_LE(after.stamp_ns, now + 16 * kMs);
+}
+
 TEST(StoneSimulation, InvalidInitialStateNamesTheParameter) {
   vg::StoneConfig c;
   c.initial_orientation = Eigen::Vector4d::Zero();

@@ -84,6 +84,9 @@ UpdateResult StoneSimulation::update(std::int64_t now_ns) {
       // The state keeps going from where it was, but on the new time line: a new segment,
       // and nothing stamped on the old one is published again.
       clock_.restart(now_ns);
+      // A held state is only re-timed (so a reset takes effect near ROS time): announcing or
+      // publishing it would present the stale state as new.
+      if (held_) return result;
       begin_segment(EventReason::time_jump, now_ns, result);
       break;
     case SimClock::Action::advance:
@@ -92,8 +95,10 @@ UpdateResult StoneSimulation::update(std::int64_t now_ns) {
           step(result);
         } catch (const IntegrationError& e) {
           result.error = e.what();
+          held_ = true;
           break;
         }
+        held_ = false;
         result.advanced = true;
       }
       result.stamp_ns = clock_.time_ns();

@@ -23,7 +23,9 @@ struct UpdateResult {
   bool advanced = false;             // a new state exists at stamp_ns: publish it
   std::int64_t stamp_ns = 0;         // simulated time of state()
   std::vector<SegmentEvent> events;  // new segments started during this update, in order
-  std::string error;  // non-empty when the integrator failed (state kept, not advanced)
+  // Non-empty when the integrator failed: the state is held and nothing is published until
+  // reset, set_state or an auto reset replaces it.
+  std::string error;
 };
 
 class StoneSimulation {
@@ -83,6 +85,9 @@ class StoneSimulation {
   std::int64_t start_ns_ = 0;
   std::int64_t segment_start_ns_ = 0;
   std::uint32_t segment_ = 0;
+  // The integrator failed on state_ and no change has replaced it since: there is no new state
+  // to publish, also not after a time jump (it would re-stamp the old one).
+  bool held_ = false;
   std::deque<Change> pending_;
 };
 
