@@ -156,6 +156,14 @@ void print_report(std::ostream& out, const Report& report) {
         << "  momentum drift         " << sci(m[2]) << " (relative, world L)\n"
         << "  orientation error      " << sci(m[3]) << " rad (vs closed form)\n"
         << "  position error         " << sci(m[4]) << " m (vs closed form)\n";
+    auto print_non_finite = [&](const NonFiniteValues& v, const std::string& what) {
+      if (v.count == 0) return;
+      out << "  non-finite values      " << v.count << " " << what << " (first at "
+          << stamp_text(v.first_stamp_ns) << " s, " << v.first_field
+          << "), left out of the maxima above\n";
+    };
+    print_non_finite(p.non_finite_odom, "~odom samples");
+    print_non_finite(p.non_finite_events, "~events messages");
   }
 
   out << "\nchecks:\n";

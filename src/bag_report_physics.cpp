@@ -67,7 +67,27 @@ std::vector<SegmentPlan> plan_segments(const std::vector<OdomSample>& odom,
   return plans;
 }
 
+const char* non_finite_field(const OdomSample& sample) {
+  if (!sample.position_world.allFinite()) return "position";
+  if (!sample.orientation_raw.coeffs().allFinite()) return "orientation";
+  if (!sample.velocity_body.allFinite()) return "linear velocity";
+  if (!sample.angular_velocity_body.allFinite()) return "angular velocity";
+  return nullptr;
+}
+
+const char* non_finite_field(const SegmentEvent& event) {
+  if (!event.position_world.allFinite()) return "position";
+  if (!event.orientation.coeffs().allFinite()) return "orientation";
+  if (!event.velocity_world.allFinite()) return "linear velocity";
+  if (!event.angular_momentum_world.allFinite()) return "angular momentum";
+  return nullptr;
+}
+
 RigidBodyState state_from_odom(const MotionModel& model, const OdomSample& sample) {
+  // Checked here, not left to RigidBody: its exception would escape check_physics.
+  require_finite("odom position", sample.position_world);
+  require_finite("odom linear velocity", sample.velocity_body);
+  require_finite("odom angular velocity", sample.angular_velocity_body);
   RigidBodyState s;
   s.position_world = sample.position_world;
   s.orientation = require_unit_quaternion("odom orientation", sample.orientation_raw);
@@ -75,10 +95,13 @@ RigidBodyState state_from_odom(const MotionModel& model, const OdomSample& sampl
   s.velocity_world = s.orientation * sample.velocity_body;
   const Eigen::Vector3d omega_world = s.orientation * sample.angular_velocity_body;
   s.angular_momentum_world = model.angular_momentum_world(s.orientation, omega_world);
-  return s;
+  return s.validated();  // finite inputs can still overflow L
 }
 
 RigidBodyState state_from_event(const SegmentEvent& event) {
+  require_finite("event position", event.position_world);
+  require_finite("event linear velocity", event.velocity_world);
+  require_finite("event angular momentum", event.angular_momentum_world);
   RigidBodyState s;
   s.position_world = event.position_world;
   s.orientation = require_unit_quaternion("event orientation", event.orientation);
@@ -104,6 +127,19 @@ PhysicsResult check_physics(const RecordingInfo& info, const std::vector<OdomSam
   const double nan = std::numeric_limits<double>::quiet_NaN();
 
   PhysicsResult result;
+  auto count_non_finite = [](NonFiniteValues& counter, const auto& messages) {
+    for (const auto& m : messages) {
+      const char* field = non_finite_field(m);
+      if (field == nullptr) continue;
+      if (counter.count++ == 0) {
+        counter.first_stamp_ns = m.stamp_ns;
+        counter.first_field = field;
+      }
+    }
+  };
+  count_non_finite(result.non_finite_odom, odom);
+  count_non_finite(result.non_finite_events, events);
+
   const std::vector<SegmentPlan> plans = plan_segments(odom, events);
   for (std::size_t k = 0; k < plans.size(); ++k) {
     SegmentResult seg;
@@ -147,7 +183,8 @@ PhysicsResult check_physics(const RecordingInfo& info, const std::vector<OdomSam
       try {
         states.push_back(state_from_odom(model, odom[i]));
       } catch (const InvalidArgument&) {
-        states.push_back(RigidBodyState{});  // zero quaternion: reported through |q| - 1
+        // A zero quaternion shows in | |q| - 1 |, a non-finite value in non_finite_odom.
+        states.push_back(RigidBodyState{});
         states.back().orientation.coeffs().setConstant(nan);
         continue;
       }
@@ -166,6 +203,7 @@ PhysicsResult check_physics(const RecordingInfo& info, const std::vector<OdomSam
       p.quat_norm_error = std::abs(o.orientation_raw.norm() - 1.0);
       if (!s.orientation.coeffs().allFinite()) {
         p.energy_drift = p.momentum_drift = p.orientation_error = p.position_error = nan;
+        p.angular_speed = nan;
       } else {
         const RigidBody body(model, s);
         p.angular_speed = body.angular_velocity_world().norm();
@@ -184,11 +222,12 @@ PhysicsResult check_physics(const RecordingInfo& info, const std::vector<OdomSam
           p.orientation_error = p.position_error = nan;
         }
       }
-      // fmax: a sample without a figure (NaN) does not hide the others; a zero quaternion,
-      // the only way to get one here, shows in | |q| - 1 | = 1.
+      // fmax: a sample without a figure (NaN) does not hide the others. Such a sample still
+      // fails --strict: a zero quaternion through | |q| - 1 | = 1, a non-finite value through
+      // the count in non_finite_odom.
       seg.duration_s = std::max(seg.duration_s, p.t_s);
-      seg.max_angular_speed = std::max(seg.max_angular_speed, p.angular_speed);
-      seg.max_abs_position = std::max(seg.max_abs_position, o.position_world.norm());
+      seg.max_angular_speed = std::fmax(seg.max_angular_speed, p.angular_speed);
+      seg.max_abs_position = std::fmax(seg.max_abs_position, o.position_world.norm());
       seg.max_quat_norm_error = std::fmax(seg.max_quat_norm_error, p.quat_norm_error);
       seg.max_energy_drift = std::fmax(seg.max_energy_drift, p.energy_drift);
       seg.max_momentum_drift = std::fmax(seg.max_momentum_drift, p.momentum_drift);

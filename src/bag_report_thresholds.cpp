@@ -135,6 +135,21 @@ std::vector<Check> run_checks(const Recording& recording, const std::vector<Stam
   }
 
   if (physics == nullptr || !recording.info) return checks;
+  // A message with a NaN or infinity has no figures, and the maxima skip NaN: the count
+  // itself has to fail --strict.
+  auto add_non_finite = [&](const NonFiniteValues& v, const std::string& topic) {
+    std::string basis = "every value finite";
+    if (v.count > 0) {
+      std::ostringstream first;
+      first << std::fixed << std::setprecision(6) << static_cast<double>(v.first_stamp_ns) * 1e-9;
+      basis = "first at " + first.str() + " s, " + v.first_field + "; no figures for them";
+    }
+    add("non-finite values", topic, static_cast<double>(v.count), 0.0, basis);
+  };
+  add_non_finite(physics->non_finite_odom, recording.odom_topic);
+  if (!recording.events.empty()) {
+    add_non_finite(physics->non_finite_events, recording.events_topic);
+  }
   const RecordingInfo& info = *recording.info;
   // Per figure, the segment closest to (or furthest over) its own limit.
   struct Worst {

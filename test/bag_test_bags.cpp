@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace virtual_go_test {
 namespace {
@@ -152,6 +153,9 @@ std::size_t write_run_bag(const std::string& path, const SyntheticRun& run) {
     odom.pose.pose = pose_msg(s.position, s.orientation);
     odom.twist.twist.linear = vec_msg(s.orientation.conjugate() * s.velocity_world);
     odom.twist.twist.angular = vec_msg(s.angular_velocity_body);
+    if (std::count(run.nan_odom.begin(), run.nan_odom.end(), i) > 0) {
+      odom.pose.pose.position.x = std::numeric_limits<double>::quiet_NaN();
+    }
     geometry_msgs::PoseStamped pose;
     pose.header = odom.header;
     pose.pose = odom.pose.pose;

@@ -22,6 +22,8 @@ struct SyntheticRun {
   // Messages of ~odom, ~pose and tf to leave out (a gap) and to write twice (a repeat).
   std::vector<std::size_t> drop;
   std::vector<std::size_t> duplicate;
+  // ~odom messages whose position x is NaN (a corrupted sample; ~pose and tf stay intact).
+  std::vector<std::size_t> nan_odom;
   // A reset back to the initial state this long after the start (0 = none); the event is
   // written unless reset_without_event.
   double reset_after = 0.0;

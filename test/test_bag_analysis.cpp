@@ -179,6 +179,41 @@ TEST(CheckPhysics, MomentumDriftIsRelativeToTheFirstL) {
   EXPECT_NEAR(vb::check_physics(info(), odom, {}).samples[1].momentum_drift, 1.0, 1e-12);
 }
 
+TEST(CheckPhysics, NonFiniteValuesAreCountedNotFatal) {
+  std::vector<vb::OdomSample> odom;
+  for (int i = 0; i <= 10; ++i) odom.push_back(odom_at(i * 20 * kMs, i * 0.02));
+  odom[3].velocity_body.y() = NAN;
+  odom[5].position_world.x() = INFINITY;
+  const vb::PhysicsResult r = vb::check_physics(info(), odom, {});
+  EXPECT_EQ(r.non_finite_odom.count, 2u);
+  EXPECT_EQ(r.non_finite_odom.first_stamp_ns, 60 * kMs);
+  EXPECT_EQ(r.non_finite_odom.first_field, "linear velocity");
+  EXPECT_TRUE(std::isnan(r.samples[3].energy_drift));
+  EXPECT_TRUE(std::isnan(r.samples[5].orientation_error));
+  ASSERT_EQ(r.segments.size(), 1u);
+  EXPECT_TRUE(r.segments[0].predicted);
+  EXPECT_LT(r.segments[0].max_orientation_error, 1e-12) << "the other samples keep their figures";
+
+  vb::Recording rec;
+  rec.info = info();
+  rec.odom_topic = "/stone/odom";
+  const auto checks = vb::run_checks(rec, {}, &r, vb::LimitOverrides{});
+  bool counted = false;
+  for (const vb::Check& c : checks) {
+    if (c.figure == "non-finite values") counted = !c.pass && c.value == 2.0;
+  }
+  EXPECT_TRUE(counted) << "a NaN sample must fail --strict";
+
+  // A non-finite event cannot start a prediction; it is counted too.
+  vb::SegmentEvent bad = event_at(0, "start");
+  bad.angular_momentum_world.z() = NAN;
+  const vb::PhysicsResult e = vb::check_physics(info(), {odom_at(0, 0.0)}, {bad});
+  EXPECT_EQ(e.non_finite_events.count, 1u);
+  ASSERT_EQ(e.segments.size(), 1u);
+  EXPECT_FALSE(e.segments[0].predicted);
+  EXPECT_NE(e.segments[0].note.find("angular momentum"), std::string::npos) << e.segments[0].note;
+}
+
 TEST(CheckPhysics, BadInfoIsRejected) {
   vb::RecordingInfo bad = info();
   bad.model = "quantum";

@@ -150,6 +150,28 @@ TEST(BagReportCli, OrientationErrorOverTheIntegratorBoundFails) {
   EXPECT_EQ(splitting.exit_code, 0) << splitting.out;
 }
 
+TEST(BagReportCli, NonFiniteOdomSampleIsReportedAndTheRestGoesOn) {
+  SyntheticRun run;
+  run.nan_odom = {30};  // position x NaN at 100.6 s
+  const std::string path = bag("nan_odom", run);
+  const std::string csv = dir() + "/nan_odom.csv";
+  const Result r = run_report(path + " --csv " + csv);
+  EXPECT_EQ(r.exit_code, 0) << "without --strict the report itself succeeds\n" << r.err;
+  EXPECT_NE(r.out.find("non-finite values      1 ~odom samples (first at 100.600000 s, position)"),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("FAIL  non-finite values"), std::string::npos) << r.out;
+  // The physics figures of every other sample are still there, and within the bounds.
+  EXPECT_EQ(r.out.find("cannot describe"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("ok    orientation error"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("ok    energy drift"), std::string::npos) << r.out;
+  EXPECT_EQ(lines(read_text(csv)), 102u);
+  EXPECT_NE(read_text(csv).find("nan"), std::string::npos) << "the sample is marked NaN";
+
+  const Result strict = run_report(path + " --strict");
+  EXPECT_EQ(strict.exit_code, 1) << strict.out << strict.err;
+}
+
 TEST(BagReportCli, BagWithoutInfoIsAPartialReport) {
   SyntheticRun run;
   run.with_info = false;

@@ -31,7 +31,13 @@ struct SegmentPlan {
 std::vector<SegmentPlan> plan_segments(const std::vector<OdomSample>& odom,
                                        const std::vector<SegmentEvent>& events);
 
+// The first field of a sample holding a NaN or infinity ("position", "orientation",
+// "linear velocity", "angular velocity"; events: "angular momentum"), or nullptr.
+const char* non_finite_field(const OdomSample& sample);
+const char* non_finite_field(const SegmentEvent& event);
+
 // The recorded state of one odom sample: body twist -> world, L from omega via the model.
+// Both throw InvalidArgument for a non-finite value or a zero quaternion.
 RigidBodyState state_from_odom(const MotionModel& model, const OdomSample& sample);
 RigidBodyState state_from_event(const SegmentEvent& event);
 
@@ -65,12 +71,23 @@ struct SegmentResult {
   double max_position_error = 0.0;
 };
 
+// Messages with a NaN or infinite value. Such an odom sample gets NaN figures and the rest of
+// the report goes on; run_checks fails --strict on any of them (the maxima skip NaN).
+struct NonFiniteValues {
+  std::size_t count = 0;
+  std::int64_t first_stamp_ns = 0;
+  std::string first_field;  // as non_finite_field() names it
+};
+
 struct PhysicsResult {
   std::vector<SegmentResult> segments;
   std::vector<PhysicsSample> samples;  // in odom order
+  NonFiniteValues non_finite_odom;
+  NonFiniteValues non_finite_events;
 };
 
-// Throws InvalidArgument when ~info cannot describe a motion model (the message says which field).
+// Throws InvalidArgument only when ~info cannot describe a motion model (the message says which
+// field); bad odom or event values are reported in the result instead.
 PhysicsResult check_physics(const RecordingInfo& info, const std::vector<OdomSample>& odom,
                             const std::vector<SegmentEvent>& events);
 
