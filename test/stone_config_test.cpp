@@ -38,6 +38,25 @@ TEST(StoneConfig, RateBoundsAreInclusive) {
   }
 }
 
+TEST(StoneConfig, AutoResetPeriodMustBeLongerThanAStep) {
+  vg::StoneConfig config;
+  config.auto_reset_period = 0.002;  // two steps: one step of motion, then the reset
+  EXPECT_NO_THROW(vg::validate_config(config));
+  config.auto_reset_period = 0.0;  // never
+  EXPECT_NO_THROW(vg::validate_config(config));
+  for (double period : {0.0009, 0.001}) {  // would reset at every step
+    config.auto_reset_period = period;
+    try {
+      vg::validate_config(config);
+      ADD_FAILURE() << "auto reset period " << period << " accepted with dt 0.001";
+    } catch (const vg::ConfigError& e) {
+      const std::string message = e.what();
+      EXPECT_EQ(message.rfind("~auto_reset_period:", 0), 0u) << message;
+      EXPECT_NE(message.find("longer than ~dt"), std::string::npos) << message;
+    }
+  }
+}
+
 TEST(StoneConfig, DtMustBeAWholeNumberOfNanoseconds) {
   EXPECT_EQ(vg::dt_to_ns(0.001), 1000000);
   EXPECT_EQ(vg::dt_to_ns(0.001666666), 1666666);  // 0.001666666 s
@@ -79,6 +98,12 @@ TEST(StoneConfig, EachBadParameterIsNamed) {
   expect_refused("max_angular_velocity", [](vg::StoneConfig& c) { c.max_angular_velocity = -1; });
   expect_refused("auto_reset_period", [](vg::StoneConfig& c) { c.auto_reset_period = -0.5; });
   expect_refused("auto_reset_period", [](vg::StoneConfig& c) { c.auto_reset_period = kInf; });
+  // Shorter than a step: the stone would be reset at every step.
+  expect_refused("auto_reset_period", [](vg::StoneConfig& c) { c.auto_reset_period = 0.0005; });
+  expect_refused("auto_reset_period", [](vg::StoneConfig& c) {
+    c.dt = 0.01;
+    c.auto_reset_period = 0.009;
+  });
   expect_refused("world_frame", [](vg::StoneConfig& c) { c.world_frame = ""; });
   expect_refused("stone_frame", [](vg::StoneConfig& c) { c.stone_frame = "/stone"; });
   expect_refused("stone_frame", [](vg::StoneConfig& c) { c.stone_frame = "world"; });

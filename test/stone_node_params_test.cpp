@@ -49,6 +49,7 @@ TEST(StoneNodeParams, InvalidParametersAreFatalAndNamed) {
       {"gravity", "_gravity:=[0.0,0.0]", "~gravity: must be a list of 3 numbers"},
       {"color", "_stone/color:=green", "~stone/color:"},
       {"size", "_stone/size:=29", "~stone/size:"},
+      {"auto_reset", "_auto_reset_period:=0.0005", "~auto_reset_period: must be 0 (never) or"},
       {"orientation", "_initial/orientation:=[0.0,0.0,0.0,0.0]", "~initial/orientation"},
       {"omega", "_initial/angular_velocity:=[0.0,0.0,1.0e6]", "~initial/angular_velocity"},
       {"type", "_dt:=fast", "~dt: must be a number"},

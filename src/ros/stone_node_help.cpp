@@ -43,7 +43,7 @@ Parameters (defaults in brackets):
   ~initial/velocity      [x, y, z] m/s, world [0, 0, 0]
   ~initial/angular_velocity  [x, y, z] rad/s, world [0, 0, 0]
   ~max_angular_velocity  rad/s; larger requests are refused [500]
-  ~auto_reset_period     s; reset when a segment is this old, 0 = never [0]
+  ~auto_reset_period     s; reset when a segment is this old, 0 = never, else > ~dt [0]
   ~world_frame           [world]
   ~stone_frame           [stone]
 

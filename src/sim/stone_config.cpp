@@ -53,7 +53,7 @@ void validate_config(const StoneConfig& c) {
     fail("rate", "must be between " + format_value(kMinRate) + " and " + format_value(kMaxRate) +
                      " Hz, got " + format_value(c.rate));
   }
-  dt_to_ns(c.dt);
+  const std::int64_t dt_ns = dt_to_ns(c.dt);
   try {
     motion_model_from_name(c.model);
   } catch (const InvalidArgument& e) {
@@ -97,6 +97,12 @@ void validate_config(const StoneConfig& c) {
       c.auto_reset_period > 1e6) {
     fail("auto_reset_period",
          "must be between 0 (never) and 1e6 s, got " + format_value(c.auto_reset_period));
+  }
+  // A segment is reset at the first step at which its age reaches the period: one of ~dt or
+  // less would reset the stone at every step, so it could never move.
+  if (c.auto_reset_period > 0.0 && std::llround(c.auto_reset_period * 1e9) <= dt_ns) {
+    fail("auto_reset_period", "must be 0 (never) or longer than ~dt " + format_value(c.dt) +
+                                  " s, got " + format_value(c.auto_reset_period) + " s");
   }
   check_frame("world_frame", c.world_frame);
   check_frame("stone_frame", c.stone_frame);
