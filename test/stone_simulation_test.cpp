@@ -105,6 +105,41 @@ TEST(StoneSimulation, RequestsTakeEffectAtTheNextGridTime) {
             1e-12);
 }
 
+TEST(StoneSimulation, ChangesAtOneStepMakeOneEvent) {
+  vg::StoneSimulation sim(spinning_toss());
+  sim.update(kStart);
+  sim.update(kStart + 10 * kMs);
+  // Applied in order: the set_state is overwritten by the reset, then the stone spun up.
+  sim.set_state(Eigen::Vector3d(1, 2, 3), Eigen::Vector4d(0, 0, 1, 0), Eigen::Vector3d(0, 0, 0),
+                Eigen::Vector3d(0, 0, 5));
+  sim.reset();
+  sim.set_angular_velocity(Eigen::Vector3d(0, 0, 30), "world");
+  vg::UpdateResult r = sim.update(kStart + 13 * kMs);
+  ASSERT_EQ(r.events.size(), 1u);
+  EXPECT_EQ(r.events[0].reason, vg::EventReason::set_angular_velocity);  // the last change
+  EXPECT_EQ(r.events[0].segment, 1u);
+  EXPECT_EQ(r.events[0].stamp_ns, kStart + 11 * kMs);
+  EXPECT_EQ(r.events[0].state.position_world, sim.initial_state().position_world);
+  EXPECT_TRUE(r.events[0].state.orientation.coeffs() == sim.initial_state().orientation.coeffs());
+  EXPECT_LT((vg::RigidBody(sim.setup().model, r.events[0].state).angular_velocity_world() -
+             Eigen::Vector3d(0, 0, 30))
+                .norm(),
+            1e-12);
+
+  // A change due at the step of an auto reset joins its event too.
+  vg::StoneConfig c = spinning_toss();
+  c.auto_reset_period = 0.05;
+  vg::StoneSimulation auto_sim(c);
+  auto_sim.update(kStart);
+  auto_sim.update(kStart + 49 * kMs);
+  auto_sim.reset();
+  r = auto_sim.update(kStart + 50 * kMs);
+  ASSERT_EQ(r.events.size(), 1u);
+  EXPECT_EQ(r.events[0].reason, vg::EventReason::reset);
+  EXPECT_EQ(r.events[0].segment, 1u);
+  EXPECT_EQ(r.events[0].stamp_ns, kStart + 50 * kMs);
+}
+
 TEST(StoneSimulation, AngularVelocityInTheStoneFrame) {
   vg::StoneSimulation sim(spinning_toss());
   sim.update(kStart);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 namespace virtual_go {
 namespace {
@@ -113,20 +114,24 @@ void StoneSimulation::step(UpdateResult& result) {
   const std::int64_t next_ns = clock_.next_time_ns();
   const bool auto_reset = auto_reset_ns_ > 0 && next_ns - segment_start_ns_ >= auto_reset_ns_;
   RigidBodyState next = state_;
-  // A change that replaces the whole state makes integrating this step pointless, and lets a
-  // reset recover from a state the integrator cannot handle.
-  const bool replaced = auto_reset || (!pending_.empty() && pending_.front().replaces_state());
+  // A change that replaces the whole state (any pending one: all apply at this step) makes
+  // integrating this step pointless, and lets a reset recover from a state the integrator
+  // cannot handle.
+  const bool replaced =
+      auto_reset || std::any_of(pending_.begin(), pending_.end(),
+                                [](const Change& change) { return change.replaces_state(); });
   if (!replaced) integrator_->advance(next, dt_);  // throws with nothing changed
 
   clock_.step();
   state_ = next;
+  // Everything due at this step applies in order and starts one segment, named after the last
+  // change: an event each would make segments of zero length at the same stamp.
+  std::optional<EventReason> reason;
   if (auto_reset) {
     state_ = initial_;
-    begin_segment(EventReason::auto_reset, next_ns, result);
+    reason = EventReason::auto_reset;
   }
-  while (!pending_.empty()) {
-    const Change change = pending_.front();
-    pending_.pop_front();
+  for (const Change& change : pending_) {
     if (change.replaces_state()) {
       state_ = change.state;
     } else {
@@ -135,8 +140,10 @@ void StoneSimulation::step(UpdateResult& result) {
                                               : change.omega;
       state_ = with_angular_velocity_world(setup_.model, state_, omega_world);
     }
-    begin_segment(change.reason, next_ns, result);
+    reason = change.reason;
   }
+  pending_.clear();
+  if (reason) begin_segment(*reason, next_ns, result);
 }
 
 }  // namespace virtual_go

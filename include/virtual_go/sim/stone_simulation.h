@@ -39,6 +39,7 @@ class StoneSimulation {
   // Requests validate at once (InvalidArgument naming the field; nothing changes) and take
   // effect at the next grid time, which becomes the first state of a new segment: stamps stay
   // strictly increasing and the state already published at the current time stays true.
+  // Requests due at the same step apply in order and start one segment, named after the last.
   void reset();
   // frame: "" / "world" / world frame id, or "stone" / stone frame id. For rigid_body this sets
   // L = I w at the instant it takes effect.
