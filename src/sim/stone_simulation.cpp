@@ -14,6 +14,11 @@ Stone checked_stone(const StoneConfig& config) {
   return make_stone(config.stone);
 }
 
+SimClock make_clock(double dt) {
+  const std::int64_t dt_ns = dt_to_ns(dt);
+  return SimClock(dt_ns, std::max(kMaxLagNs, 2 * dt_ns));
+}
+
 }  // namespace
 
 StoneSimulation::StoneSimulation(const StoneConfig& config)
@@ -22,9 +27,8 @@ StoneSimulation::StoneSimulation(const StoneConfig& config)
       setup_{MotionModel(motion_model_from_name(config.model), stone_.mass_properties),
              config.gravity},
       integrator_(make_integrator(config.integrator, setup_)),
-      dt_(static_cast<double>(dt_to_ns(config.dt)) * 1e-9),
       auto_reset_ns_(std::llround(config.auto_reset_period * 1e9)),
-      clock_(dt_to_ns(config.dt), std::max(kMaxLagNs, 2 * dt_to_ns(config.dt))) {
+      clock_(make_clock(config.dt)) {
   try {
     initial_ = state_from_request({"~initial/position", "~initial/orientation", "~initial/velocity",
                                    "~initial/angular_velocity"},
@@ -38,7 +42,7 @@ StoneSimulation::StoneSimulation(const StoneConfig& config)
 }
 
 AngularVelocityLimit StoneSimulation::angular_velocity_limit() const {
-  return {config_.max_angular_velocity, integrator_->max_rotation_per_step(), dt_,
+  return {config_.max_angular_velocity, integrator_->max_rotation_per_step(), dt(),
           integrator_->name()};
 }
 
@@ -120,7 +124,7 @@ void StoneSimulation::step(UpdateResult& result) {
   const bool replaced =
       auto_reset || std::any_of(pending_.begin(), pending_.end(),
                                 [](const Change& change) { return change.replaces_state(); });
-  if (!replaced) integrator_->advance(next, dt_);  // throws with nothing changed
+  if (!replaced) integrator_->advance(next, dt());  // throws with nothing changed
 
   clock_.step();
   state_ = next;

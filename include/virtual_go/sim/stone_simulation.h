@@ -73,12 +73,13 @@ class StoneSimulation {
   void step(UpdateResult& result);
   void begin_segment(EventReason reason, std::int64_t stamp_ns, UpdateResult& result);
   AngularVelocityLimit angular_velocity_limit() const;
+  // s, as the integrator sees it: from the clock's whole nanoseconds, not the ~dt parameter.
+  double dt() const { return static_cast<double>(clock_.dt_ns()) * 1e-9; }
 
   StoneConfig config_;
   Stone stone_;
   MotionSetup setup_;
   std::unique_ptr<Integrator> integrator_;
-  double dt_;  // s, exactly dt_ns * 1e-9 as the integrator sees it
   std::int64_t auto_reset_ns_;
   RigidBodyState initial_;
   SimClock clock_;
