@@ -94,6 +94,28 @@ TEST(StoneConfig, EachBadParameterIsNamed) {
   expect_refused("stone/material", [](vg::StoneConfig& c) { c.stone.material = "plastic"; });
   expect_refused("stone/density", [](vg::StoneConfig& c) { c.stone.density = kNaN; });
   expect_refused("stone/mass", [](vg::StoneConfig& c) { c.stone.mass = 0.0; });
+  // make_stone names core fields; each must map to the parameter that was set.
+  expect_refused("stone/size", [](vg::StoneConfig& c) {
+    c.stone.size_number = 40;  // 11.3 mm, not less than the width
+    c.stone.width = 0.011;
+  });
+  expect_refused("stone/height", [](vg::StoneConfig& c) {
+    c.stone.size_number = 33;  // overridden by the height
+    c.stone.height = 0.022;
+  });
+  expect_refused("stone/density", [](vg::StoneConfig& c) {
+    c.stone.density = -1.0;  // checked even though the mass overrides it
+    c.stone.mass = 0.005;
+  });
+  expect_refused("stone/mass", [](vg::StoneConfig& c) {
+    c.stone.density = 2000.0;
+    c.stone.mass = kInf;
+  });
+  expect_refused("stone/material", [](vg::StoneConfig& c) {
+    c.stone.material = "x";  // a misspelt material is an error even when overridden
+    c.stone.mass = 0.005;
+  });
+  expect_refused("stone/density", [](vg::StoneConfig& c) { c.stone.density = 1e-320; });
   expect_refused("stone/color", [](vg::StoneConfig& c) { c.color = "green"; });
   expect_refused("max_angular_velocity", [](vg::StoneConfig& c) { c.max_angular_velocity = -1; });
   expect_refused("auto_reset_period", [](vg::StoneConfig& c) { c.auto_reset_period = -0.5; });

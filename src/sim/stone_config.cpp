@@ -28,6 +28,33 @@ void check_frame(const std::string& param, const std::string& frame) {
   if (frame[0] == '/') fail(param, "must not start with '/', got '" + frame + "'");
 }
 
+// The ROS parameter behind an error of make_stone, from the field its message starts with.
+std::string stone_parameter(const std::string& message, const StoneSpec& spec) {
+  auto starts_with = [&message](const char* field) { return message.rfind(field, 0) == 0; };
+  if (starts_with("stone width")) return "stone/width";
+  if (starts_with("unknown stone size")) return "stone/size";
+  // Also "must be less than the width": the height comes from ~stone/height or ~stone/size.
+  if (starts_with("stone height")) return spec.height ? "stone/height" : "stone/size";
+  if (starts_with("unknown stone material")) return "stone/material";
+  if (starts_with("density") && spec.density) return "stone/density";
+  if (starts_with("mass") && spec.mass) return "stone/mass";
+  // A derived mass, density or moment underflowed (a vanishing stone or override): blame the
+  // override that set it, else the dimensions.
+  if (spec.mass) return "stone/mass";
+  if (spec.density) return "stone/density";
+  return spec.height ? "stone/height" : "stone/width";
+}
+
+// make_stone checks every field of the spec; only its messages name core fields, not the
+// ~stone/... parameters.
+void check_stone(const StoneSpec& spec) {
+  try {
+    make_stone(spec);
+  } catch (const InvalidArgument& e) {
+    fail(stone_parameter(e.what(), spec), e.what());
+  }
+}
+
 }  // namespace
 
 std::int64_t dt_to_ns(double dt) {
@@ -67,28 +94,7 @@ void validate_config(const StoneConfig& c) {
     fail("integrator", "unknown integrator '" + c.integrator + "' (known:" + known + ")");
   }
   require_finite_param("gravity", c.gravity);
-  if (c.stone.size_number) {
-    try {
-      StoneShape::thickness_for_size(*c.stone.size_number);
-    } catch (const InvalidArgument& e) {
-      fail("stone/size", e.what());
-    }
-  }
-  require_positive_param("stone/width", c.stone.width, "m");
-  if (c.stone.height) require_positive_param("stone/height", *c.stone.height, "m");
-  try {
-    material_density(c.stone.material);
-  } catch (const InvalidArgument& e) {
-    fail("stone/material", e.what());
-  }
-  if (c.stone.density) require_positive_param("stone/density", *c.stone.density, "kg/m^3");
-  if (c.stone.mass) require_positive_param("stone/mass", *c.stone.mass, "kg");
-  try {
-    make_stone(c.stone);
-  } catch (const InvalidArgument& e) {
-    // Only the combination can be wrong here (height >= width).
-    fail(c.stone.height ? "stone/height" : "stone/size", e.what());
-  }
+  check_stone(c.stone);
   if (c.color != "black" && c.color != "white") {
     fail("stone/color", "must be 'black' or 'white', got '" + c.color + "'");
   }
