@@ -53,6 +53,8 @@ TEST(StoneNodeParams, InvalidParametersAreFatalAndNamed) {
       {"orientation", "_initial/orientation:=[0.0,0.0,0.0,0.0]", "~initial/orientation"},
       {"omega", "_initial/angular_velocity:=[0.0,0.0,1.0e6]", "~initial/angular_velocity"},
       {"type", "_dt:=fast", "~dt: must be a number"},
+      // A typo is warned about (before the FATAL that ends this run).
+      {"unknown", "_rat:=5.0 _rate:=-5.0", "ignoring unknown parameter ~rat (see"},
   };
   for (const Case& c : cases) {
     const Outcome out = run(std::string("__name:=bad_") + c.name + " " + c.arguments);

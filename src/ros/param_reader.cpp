@@ -8,27 +8,39 @@
 namespace virtual_go {
 namespace {
 
+// Every parameter once, with the field it sets: reading and the list of known names (for the
+// unknown-parameter warning) both come from here, so they cannot diverge.
+template <class Visit>
+void for_each_parameter(StoneConfig& c, Visit&& visit) {
+  visit("rate", c.rate);
+  visit("dt", c.dt);
+  visit("model", c.model);
+  visit("integrator", c.integrator);
+  visit("gravity", c.gravity);
+  visit("stone/size", c.stone.size_number);
+  visit("stone/width", c.stone.width);
+  visit("stone/height", c.stone.height);
+  visit("stone/material", c.stone.material);
+  visit("stone/density", c.stone.density);
+  visit("stone/mass", c.stone.mass);
+  visit("stone/color", c.color);
+  visit("initial/position", c.initial_position);
+  visit("initial/orientation", c.initial_orientation);
+  visit("initial/velocity", c.initial_velocity);
+  visit("initial/angular_velocity", c.initial_angular_velocity);
+  visit("max_angular_velocity", c.max_angular_velocity);
+  visit("auto_reset_period", c.auto_reset_period);
+  visit("world_frame", c.world_frame);
+  visit("stone_frame", c.stone_frame);
+}
+
 const std::vector<std::string>& known_parameters() {
-  static const std::vector<std::string> names = {"rate",
-                                                 "dt",
-                                                 "model",
-                                                 "integrator",
-                                                 "gravity",
-                                                 "stone/size",
-                                                 "stone/width",
-                                                 "stone/height",
-                                                 "stone/material",
-                                                 "stone/density",
-                                                 "stone/mass",
-                                                 "stone/color",
-                                                 "initial/position",
-                                                 "initial/orientation",
-                                                 "initial/velocity",
-                                                 "initial/angular_velocity",
-                                                 "max_angular_velocity",
-                                                 "auto_reset_period",
-                                                 "world_frame",
-                                                 "stone_frame"};
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> out;
+    StoneConfig unused;
+    for_each_parameter(unused, [&out](const char* name, auto&) { out.push_back(name); });
+    return out;
+  }();
   return names;
 }
 
@@ -111,26 +123,7 @@ class Reader {
 StoneConfig read_stone_config(const ros::NodeHandle& nh) {
   const Reader r(nh);
   StoneConfig c;
-  r.read("rate", c.rate);
-  r.read("dt", c.dt);
-  r.read("model", c.model);
-  r.read("integrator", c.integrator);
-  r.read<3>("gravity", c.gravity);
-  r.read("stone/size", c.stone.size_number);
-  r.read("stone/width", c.stone.width);
-  r.read("stone/height", c.stone.height);
-  r.read("stone/material", c.stone.material);
-  r.read("stone/density", c.stone.density);
-  r.read("stone/mass", c.stone.mass);
-  r.read("stone/color", c.color);
-  r.read<3>("initial/position", c.initial_position);
-  r.read<4>("initial/orientation", c.initial_orientation);
-  r.read<3>("initial/velocity", c.initial_velocity);
-  r.read<3>("initial/angular_velocity", c.initial_angular_velocity);
-  r.read("max_angular_velocity", c.max_angular_velocity);
-  r.read("auto_reset_period", c.auto_reset_period);
-  r.read("world_frame", c.world_frame);
-  r.read("stone_frame", c.stone_frame);
+  for_each_parameter(c, [&r](const char* name, auto& field) { r.read(name, field); });
   return c;
 }
 
