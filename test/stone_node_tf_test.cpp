@@ -25,6 +25,37 @@ TEST(StoneNodeTf, LatchedTopicsArrive) {
   EXPECT_GT(info.principal_moments.z, info.principal_moments.x);  // flat lens: I3 > I1
   EXPECT_GT(info.header.stamp.toNSec(), 0u);
 
+  // ~info against values written here from test/config/spin.yaml and DESIGN.md, not from the
+  // node's own output: ClosedForm::from_info trusts ~info, so a swapped x y z w / w x y z or an
+  // ignored parameter would otherwise go unnoticed.
+  EXPECT_EQ(info.model, "rigid_body");
+  EXPECT_DOUBLE_EQ(info.rate, 50.0);
+  EXPECT_DOUBLE_EQ(info.auto_reset_period, 0.0);
+  EXPECT_DOUBLE_EQ(info.max_angular_velocity, 500.0);  // the default
+  EXPECT_EQ(vgtest::vec(info.gravity), Eigen::Vector3d(0.0, 0.0, -9.80665));
+  EXPECT_EQ(vgtest::vec(info.initial_pose.position), Eigen::Vector3d(0.01, -0.02, 0.5));
+  // The YAML quaternion is x y z w, 30 degrees about x, normalised by the node (|q| is 1 to 5e-8).
+  const geometry_msgs::Quaternion& q = info.initial_pose.orientation;
+  EXPECT_NEAR(q.x, 0.2588190, 1e-7);
+  EXPECT_NEAR(q.y, 0.0, 1e-15);
+  EXPECT_NEAR(q.z, 0.0, 1e-15);
+  EXPECT_NEAR(q.w, 0.9659258, 1e-7);
+  EXPECT_LT((vgtest::vec(info.initial_twist.linear) - Eigen::Vector3d(0.1, 0.05, 1.0)).norm(),
+            1e-15);
+  // Round trip w -> L = R I R^T w -> w costs a few ulps.
+  EXPECT_LT((vgtest::vec(info.initial_twist.angular) - Eigen::Vector3d(7.0, -3.0, 45.0)).norm(),
+            1e-12);
+  // Size 33 slate lens (DESIGN.md "Stone"): a = w / 2, c = h / 2, rho 2700 kg/m^3.
+  const double a = 0.011, c = 0.0046, rho = 2700.0, a2 = a * a, c2 = c * c;
+  const double i3 = M_PI * rho * c * (10 * a2 * a2 + 5 * a2 * c2 + c2 * c2) / 30;
+  const double i1 = M_PI * rho * c * (10 * a2 * a2 + 15 * a2 * c2 + 7 * c2 * c2) / 60;
+  const double mass = rho * M_PI * c * (3 * a2 + c2) / 3;
+  EXPECT_DOUBLE_EQ(info.density, rho);
+  EXPECT_NEAR(info.mass / mass, 1.0, 1e-12);
+  EXPECT_NEAR(info.principal_moments.x / i1, 1.0, 1e-12);
+  EXPECT_NEAR(info.principal_moments.y / i1, 1.0, 1e-12);
+  EXPECT_NEAR(info.principal_moments.z / i3, 1.0, 1e-12);
+
   const visualization_msgs::Marker& marker = *o.marker;
   EXPECT_EQ(marker.type, visualization_msgs::Marker::TRIANGLE_LIST);
   EXPECT_EQ(marker.header.frame_id, "stone");
