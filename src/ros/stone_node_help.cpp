@@ -47,7 +47,8 @@ Parameters (defaults in brackets):
   ~world_frame           [world]
   ~stone_frame           [stone]
 
-Example:
+Example (integers are fine for float64 fields; write exponents as 1.0e+9, since YAML reads
+1e9 as a string, which rosservice refuses):
   rosservice call /stone/set_angular_velocity '{angular_velocity: {x: 0, y: 0, z: 30}, frame: world}'
 
 Options:
