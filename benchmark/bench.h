@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "virtual_go/integrator.h"
-#include "virtual_go/rigid_body_state.h"
+#include "virtual_go/flight/integrator.h"
+#include "virtual_go/body/rigid_body_state.h"
 
 namespace vg_bench {
 

@@ -13,11 +13,11 @@
 #include <sstream>
 
 #include "bench.h"
-#include "virtual_go/exact_motion.h"
-#include "virtual_go/rigid_body.h"
-#include "virtual_go/rotation.h"
-#include "virtual_go/stone.h"
-#include "virtual_go/validation.h"
+#include "virtual_go/flight/exact_motion.h"
+#include "virtual_go/body/rigid_body.h"
+#include "virtual_go/geometry/rotation.h"
+#include "virtual_go/go/stone.h"
+#include "virtual_go/common/validation.h"
 
 namespace vg = virtual_go;
 using vg_bench::Method;

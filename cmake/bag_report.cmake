@@ -4,12 +4,12 @@
 include_directories(${catkin_INCLUDE_DIRS})
 
 add_library(virtual_go_bag_report
-  src/bag_report_stamps.cpp
-  src/bag_report_physics.cpp
-  src/bag_report_thresholds.cpp
-  src/bag_report_options.cpp
-  src/bag_report_output.cpp
-  src/bag_report_reader.cpp)
+  src/bag/stamp_statistics.cpp
+  src/bag/physics_check.cpp
+  src/bag/thresholds.cpp
+  src/bag/options.cpp
+  src/bag/report.cpp
+  src/bag/bag_reader.cpp)
 target_include_directories(virtual_go_bag_report PUBLIC include ${catkin_INCLUDE_DIRS}
   ${CATKIN_DEVEL_PREFIX}/${CATKIN_GLOBAL_INCLUDE_DESTINATION})
 target_link_libraries(virtual_go_bag_report PUBLIC ${catkin_LIBRARIES} virtual_go_core)
@@ -17,7 +17,7 @@ target_link_libraries(virtual_go_bag_report PUBLIC ${catkin_LIBRARIES} virtual_g
 add_dependencies(virtual_go_bag_report ${${PROJECT_NAME}_EXPORTED_TARGETS}
   ${catkin_EXPORTED_TARGETS})
 
-add_executable(bag_report src/bag_report_main.cpp)
+add_executable(bag_report src/apps/bag_report_main.cpp)
 target_link_libraries(bag_report virtual_go_bag_report)
 set_target_properties(bag_report PROPERTIES
   RUNTIME_OUTPUT_DIRECTORY ${CATKIN_DEVEL_PREFIX}/${CATKIN_PACKAGE_BIN_DESTINATION})

@@ -11,7 +11,7 @@ add_library(virtual_go_sim
 target_link_libraries(virtual_go_sim PUBLIC virtual_go_core)
 
 add_executable(stone_node
-  src/stone_node_main.cpp
+  src/apps/stone_node_main.cpp
   src/ros/stone_node.cpp
   src/ros/stone_node_help.cpp
   src/ros/param_reader.cpp

@@ -1,17 +1,18 @@
-# gtest suite of virtual_go_core: one binary per concept, no ROS master needed.
+# gtest suite of virtual_go_core: one binary per test file, named after it, no ROS master.
 # Included by CMakeLists.txt inside if(CATKIN_ENABLE_TESTING).
 foreach(core_test
-    test_mass_properties
-    test_stone
-    test_tessellation
-    test_rotation
-    test_rigid_body
-    test_free_fall
-    test_torque_free_motion
-    test_conservation
-    test_convergence
-    test_constant_omega
-    test_bad_input)
-  catkin_add_gtest(${core_test} test/${core_test}.cpp)
-  target_link_libraries(${core_test} virtual_go_core GTest::gtest_main)
+    common/test_bad_input
+    geometry/test_rotation
+    geometry/test_tessellation
+    body/test_mass_properties
+    body/test_rigid_body
+    go/test_stone
+    flight/test_free_fall
+    flight/test_torque_free_motion
+    flight/test_conservation
+    flight/test_convergence
+    flight/test_constant_omega)
+  get_filename_component(target ${core_test} NAME)
+  catkin_add_gtest(${target} test/${core_test}.cpp)
+  target_link_libraries(${target} virtual_go_core GTest::gtest_main)
 endforeach()

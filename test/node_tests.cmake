@@ -2,20 +2,20 @@
 
 # The ROS-free adapter (clock, parameters, requests, simulation): gtest, no master.
 catkin_add_gtest(node_adapter_test
-  test/sim_clock_test.cpp
-  test/stone_config_test.cpp
-  test/state_request_test.cpp
-  test/stone_simulation_test.cpp)
+  test/sim/test_sim_clock.cpp
+  test/sim/test_stone_config.cpp
+  test/sim/test_state_request.cpp
+  test/sim/test_stone_simulation.cpp)
 target_link_libraries(node_adapter_test virtual_go_sim GTest::gtest_main)
 
 # The node with a real master (rostest). One gtest binary holds every suite; each .test file
 # starts the node with its config and picks a suite with --gtest_filter.
-add_rostest_gtest(stone_node_rostest test/stone_node_tf.test
-  test/stone_node_rostest_main.cpp
-  test/stone_node_tf_test.cpp
-  test/stone_node_services_test.cpp
-  test/stone_node_sim_time_test.cpp
-  test/stone_node_params_test.cpp)
+add_rostest_gtest(stone_node_rostest test/ros/stone_node_tf.test
+  test/support/rostest_main.cpp
+  test/ros/test_stone_node_tf.cpp
+  test/ros/test_stone_node_services.cpp
+  test/ros/test_stone_node_sim_time.cpp
+  test/ros/test_stone_node_params.cpp)
 target_link_libraries(stone_node_rostest ${catkin_LIBRARIES} GTest::gtest)
 target_compile_definitions(stone_node_rostest PRIVATE STONE_NODE_PATH="$<TARGET_FILE:stone_node>")
 add_dependencies(stone_node_rostest stone_node ${${PROJECT_NAME}_EXPORTED_TARGETS}
@@ -26,8 +26,8 @@ foreach(node_test
     stone_node_sim_time
     stone_node_params
     stone_node_hz)
-  add_rostest(test/${node_test}.test DEPENDENCIES stone_node_rostest stone_node)
+  add_rostest(test/ros/${node_test}.test DEPENDENCIES stone_node_rostest stone_node)
 endforeach()
 
 # rviz under Xvfb (the test starts Xvfb and rviz itself and reads a screenshot).
-add_rostest(test/rviz_smoke.test DEPENDENCIES stone_node)
+add_rostest(test/ros/rviz_smoke.test DEPENDENCIES stone_node)

@@ -1,12 +1,9 @@
 # Stability stress suite (issue 4): 10^7 exact steps, a 10^6-step splitting run, extreme inputs
 # and a fixed-seed fuzz of the core's public entry points. About a minute at most in all.
 catkin_add_gtest(test_stress
-  test/test_stress_main.cpp
-  test/test_stress_long.cpp
-  test/test_stress_extremes.cpp
-  test/test_stress_fuzz.cpp)
-if(TARGET test_stress)
-  target_link_libraries(test_stress virtual_go_core)
-  # Optimised even in a Debug build of the package: the long runs are mostly loop overhead here.
-  target_compile_options(test_stress PRIVATE -O2)
-endif()
+  test/stress/test_stress_long.cpp
+  test/stress/test_stress_extremes.cpp
+  test/stress/test_stress_fuzz.cpp)
+target_link_libraries(test_stress virtual_go_core GTest::gtest_main)
+# Optimised even in a Debug build of the package: the long runs are mostly loop overhead here.
+target_compile_options(test_stress PRIVATE -O2)

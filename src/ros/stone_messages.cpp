@@ -2,7 +2,7 @@
 
 #include <tf2_eigen/tf2_eigen.h>
 
-#include "virtual_go/triangle_mesh.h"
+#include "virtual_go/geometry/tessellation.h"
 
 namespace virtual_go {
 namespace {

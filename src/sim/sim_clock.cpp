@@ -2,7 +2,7 @@
 
 #include <string>
 
-#include "virtual_go/validation.h"
+#include "virtual_go/common/validation.h"
 
 namespace virtual_go {
 

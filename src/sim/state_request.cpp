@@ -1,7 +1,7 @@
 #include "virtual_go/sim/state_request.h"
 
-#include "virtual_go/rigid_body.h"
-#include "virtual_go/validation.h"
+#include "virtual_go/body/rigid_body.h"
+#include "virtual_go/common/validation.h"
 
 namespace virtual_go {
 

@@ -2,8 +2,8 @@
 
 #include <cmath>
 
-#include "virtual_go/integrator.h"
-#include "virtual_go/motion_model.h"
+#include "virtual_go/flight/integrator.h"
+#include "virtual_go/body/motion_model.h"
 
 namespace virtual_go {
 namespace {

@@ -13,7 +13,7 @@
 
 #include "virtual_go/StoneEvent.h"
 #include "virtual_go/StoneInfo.h"
-#include "virtual_go/rigid_body.h"
+#include "virtual_go/body/rigid_body.h"
 #include "virtual_go/sim/segment_event.h"
 #include "virtual_go/sim/stone_simulation.h"
 

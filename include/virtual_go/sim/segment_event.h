@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <string>
 
-#include "virtual_go/rigid_body_state.h"
+#include "virtual_go/body/rigid_body_state.h"
 
 namespace virtual_go {
 

@@ -6,8 +6,8 @@
 #include <Eigen/Geometry>
 #include <string>
 
-#include "virtual_go/motion_model.h"
-#include "virtual_go/rigid_body_state.h"
+#include "virtual_go/body/motion_model.h"
+#include "virtual_go/body/rigid_body_state.h"
 
 namespace virtual_go {
 

@@ -6,9 +6,9 @@
 #include <cstdint>
 #include <string>
 
-#include "virtual_go/rigid_body.h"
-#include "virtual_go/stone.h"
-#include "virtual_go/validation.h"
+#include "virtual_go/body/rigid_body.h"
+#include "virtual_go/go/stone.h"
+#include "virtual_go/common/validation.h"
 
 namespace virtual_go {
 

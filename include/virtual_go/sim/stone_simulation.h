@@ -9,13 +9,13 @@
 #include <string>
 #include <vector>
 
-#include "virtual_go/integrator.h"
-#include "virtual_go/rigid_body.h"
+#include "virtual_go/flight/integrator.h"
+#include "virtual_go/body/rigid_body.h"
 #include "virtual_go/sim/segment_event.h"
 #include "virtual_go/sim/sim_clock.h"
 #include "virtual_go/sim/state_request.h"
 #include "virtual_go/sim/stone_config.h"
-#include "virtual_go/stone.h"
+#include "virtual_go/go/stone.h"
 
 namespace virtual_go {
 

@@ -1,0 +1,19 @@
+# The sources of virtual_go_core (Eigen only, no ROS), by area, relative to the package root.
+# The one list of what the core is: CMakeLists.txt builds the library from it and
+# benchmark/CMakeLists.txt compiles the same files with its own flags.
+set(VG_CORE_SOURCES
+  src/common/validation.cpp
+  src/geometry/rotation.cpp
+  src/geometry/lens_shape.cpp
+  src/geometry/tessellation.cpp
+  src/body/mass_properties.cpp
+  src/body/rigid_body_state.cpp
+  src/body/motion_model.cpp
+  src/body/rigid_body.cpp
+  src/flight/integrator.cpp
+  src/flight/euler_integrator.cpp
+  src/flight/rk4_integrator.cpp
+  src/flight/splitting_integrator.cpp
+  src/flight/exact_integrator.cpp
+  src/flight/exact_motion.cpp
+  src/go/stone.cpp)

@@ -1,0 +1,249 @@
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
+
+#include "virtual_go/bag/physics_check.h"
+#include "virtual_go/flight/exact_motion.h"
+#include "virtual_go/body/rigid_body.h"
+#include "virtual_go/geometry/rotation.h"
+#include "virtual_go/common/validation.h"
+
+namespace virtual_go {
+namespace bag {
+namespace {
+
+double seconds_between(std::int64_t from_ns, std::int64_t to_ns) {
+  // Subtract in integers first: absolute stamps in double lose nanoseconds.
+  return static_cast<double>(to_ns - from_ns) * 1e-9;
+}
+
+// Kinetic plus the magnitude of potential energy: a scale that stays non-zero for a stone
+// that starts at rest at the origin (where E0 itself is zero).
+double energy_scale(const RigidBody& body, const Eigen::Vector3d& gravity) {
+  return body.kinetic_energy() + std::abs(body.potential_energy(gravity));
+}
+
+}  // namespace
+
+std::vector<SegmentPlan> plan_segments(const std::vector<OdomSample>& odom,
+                                       const std::vector<SegmentEvent>& events) {
+  std::vector<SegmentPlan> plans;
+  std::size_t next_event = 0;
+  auto start_at_event = [&](std::size_t sample_index) {
+    SegmentPlan p;
+    p.reason = events[next_event].reason;
+    p.from_event = true;
+    p.event_index = next_event;
+    p.start_ns = events[next_event].stamp_ns;
+    p.first = p.end = sample_index;
+    plans.push_back(p);
+    ++next_event;
+  };
+  for (std::size_t i = 0; i < odom.size(); ++i) {
+    const std::int64_t stamp = odom[i].stamp_ns;
+    while (next_event < events.size()) {
+      const std::int64_t event_stamp = events[next_event].stamp_ns;
+      const bool jumped_back = !plans.empty() && stamp < plans.back().start_ns;
+      const bool reached = event_stamp <= stamp;
+      // Normally an event lies ahead of the current segment's start; after a backwards jump
+      // it lies behind it, and the samples have jumped back too.
+      if (reached && (plans.empty() || event_stamp >= plans.back().start_ns || jumped_back)) {
+        start_at_event(i);
+      } else {
+        break;
+      }
+    }
+    if (plans.empty() || stamp < plans.back().start_ns) {
+      SegmentPlan p;
+      p.reason = plans.empty() ? "first odom" : "stamps went backwards (no event)";
+      p.start_ns = stamp;
+      p.first = p.end = i;
+      plans.push_back(p);
+    }
+    plans.back().end = i + 1;
+  }
+  while (next_event < events.size()) start_at_event(odom.size());
+  return plans;
+}
+
+const char* non_finite_field(const OdomSample& sample) {
+  if (!sample.position_world.allFinite()) return "position";
+  if (!sample.orientation_raw.coeffs().allFinite()) return "orientation";
+  if (!sample.velocity_body.allFinite()) return "linear velocity";
+  if (!sample.angular_velocity_body.allFinite()) return "angular velocity";
+  return nullptr;
+}
+
+const char* non_finite_field(const SegmentEvent& event) {
+  if (!event.position_world.allFinite()) return "position";
+  if (!event.orientation.coeffs().allFinite()) return "orientation";
+  if (!event.velocity_world.allFinite()) return "linear velocity";
+  if (!event.angular_momentum_world.allFinite()) return "angular momentum";
+  return nullptr;
+}
+
+RigidBodyState state_from_odom(const MotionModel& model, const OdomSample& sample) {
+  // Checked here, not left to RigidBody: its exception would escape check_physics.
+  require_finite("odom position", sample.position_world);
+  require_finite("odom linear velocity", sample.velocity_body);
+  require_finite("odom angular velocity", sample.angular_velocity_body);
+  RigidBodyState s;
+  s.position_world = sample.position_world;
+  s.orientation = require_unit_quaternion("odom orientation", sample.orientation_raw);
+  // nav_msgs/Odometry carries the twist in the child (stone) frame.
+  s.velocity_world = s.orientation * sample.velocity_body;
+  const Eigen::Vector3d omega_world = s.orientation * sample.angular_velocity_body;
+  s.angular_momentum_world = model.angular_momentum_world(s.orientation, omega_world);
+  return s.validated();  // finite inputs can still overflow L
+}
+
+RigidBodyState state_from_event(const SegmentEvent& event) {
+  require_finite("event position", event.position_world);
+  require_finite("event linear velocity", event.velocity_world);
+  require_finite("event angular momentum", event.angular_momentum_world);
+  RigidBodyState s;
+  s.position_world = event.position_world;
+  s.orientation = require_unit_quaternion("event orientation", event.orientation);
+  s.velocity_world = event.velocity_world;
+  s.angular_momentum_world = event.angular_momentum_world;
+  return s;
+}
+
+MotionModel model_from_info(const RecordingInfo& info) {
+  require_positive("info mass", info.mass);
+  require_positive("info principal_moments.x", info.principal_moments.x());
+  require_positive("info principal_moments.y", info.principal_moments.y());
+  require_positive("info principal_moments.z", info.principal_moments.z());
+  require_finite("info gravity", info.gravity);
+  return MotionModel(motion_model_from_name(info.model),
+                     MassProperties(info.mass, info.principal_moments));
+}
+
+PhysicsResult check_physics(const RecordingInfo& info, const std::vector<OdomSample>& odom,
+                            const std::vector<SegmentEvent>& events) {
+  const MotionModel model = model_from_info(info);
+  const MotionSetup setup{model, info.gravity};
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+
+  PhysicsResult result;
+  auto count_non_finite = [](NonFiniteValues& counter, const auto& messages) {
+    for (const auto& m : messages) {
+      const char* field = non_finite_field(m);
+      if (field == nullptr) continue;
+      if (counter.count++ == 0) {
+        counter.first_stamp_ns = m.stamp_ns;
+        counter.first_field = field;
+      }
+    }
+  };
+  count_non_finite(result.non_finite_odom, odom);
+  count_non_finite(result.non_finite_events, events);
+
+  const std::vector<SegmentPlan> plans = plan_segments(odom, events);
+  for (std::size_t k = 0; k < plans.size(); ++k) {
+    SegmentResult seg;
+    seg.plan = plans[k];
+    seg.samples = seg.plan.end - seg.plan.first;
+    if (!seg.plan.from_event && seg.samples == 0) continue;  // cannot happen; defensive
+
+    std::optional<RigidBodyState> start;
+    try {
+      start = seg.plan.from_event ? state_from_event(events[seg.plan.event_index])
+                                  : state_from_odom(model, odom[seg.plan.first]);
+    } catch (const InvalidArgument& e) {
+      seg.note = std::string("unusable start state: ") + e.what();
+    }
+    std::optional<ExactMotion> exact;
+    if (start) {
+      try {
+        exact.emplace(setup, *start);
+        seg.predicted = true;
+      } catch (const InvalidArgument& e) {
+        seg.note = std::string("no closed form: ") + e.what();
+      }
+    }
+
+    // The invariants need the segment's own references: its first state's energy and L.
+    double e0 = 0.0, scale = 0.0;
+    Eigen::Vector3d l0 = Eigen::Vector3d::Zero();
+    if (start) {
+      const RigidBody body(model, *start);
+      e0 = body.total_energy(info.gravity);
+      scale = energy_scale(body, info.gravity);
+      l0 = start->angular_momentum_world;
+    }
+    std::vector<RigidBodyState> states;
+    states.reserve(seg.samples);
+    // Momentum drift is relative to |L0|. A segment that starts without spin has no such
+    // scale: the largest |L| of the segment stands in, so spin appearing from rest reads 1.
+    const bool l0_zero = l0.norm() == 0.0;
+    double l_scale = l0.norm();
+    for (std::size_t i = seg.plan.first; i < seg.plan.end; ++i) {
+      try {
+        states.push_back(state_from_odom(model, odom[i]));
+      } catch (const InvalidArgument&) {
+        // A zero quaternion shows in | |q| - 1 |, a non-finite value in non_finite_odom.
+        states.push_back(RigidBodyState{});
+        states.back().orientation.coeffs().setConstant(nan);
+        continue;
+      }
+      const RigidBody body(model, states.back());
+      scale = std::max(scale, energy_scale(body, info.gravity));
+      if (l0_zero) l_scale = std::max(l_scale, states.back().angular_momentum_world.norm());
+    }
+
+    for (std::size_t j = 0; j < states.size(); ++j) {
+      const OdomSample& o = odom[seg.plan.first + j];
+      const RigidBodyState& s = states[j];
+      PhysicsSample p;
+      p.segment = result.segments.size();
+      p.stamp_ns = o.stamp_ns;
+      p.t_s = seconds_between(seg.plan.start_ns, o.stamp_ns);
+      p.quat_norm_error = std::abs(o.orientation_raw.norm() - 1.0);
+      if (!s.orientation.coeffs().allFinite()) {
+        p.energy_drift = p.momentum_drift = p.orientation_error = p.position_error = nan;
+        p.angular_speed = nan;
+      } else {
+        const RigidBody body(model, s);
+        p.angular_speed = body.angular_velocity_world().norm();
+        if (start) {
+          p.energy_drift =
+              scale > 0.0 ? std::abs(body.total_energy(info.gravity) - e0) / scale : 0.0;
+          p.momentum_drift = l_scale > 0.0 ? (s.angular_momentum_world - l0).norm() / l_scale : 0.0;
+        } else {
+          p.energy_drift = p.momentum_drift = nan;
+        }
+        if (exact) {
+          const RigidBodyState predicted = exact->state_at(p.t_s);
+          p.orientation_error = orientation_error(predicted.orientation, s.orientation);
+          p.position_error = (predicted.position_world - s.position_world).norm();
+        } else {
+          p.orientation_error = p.position_error = nan;
+        }
+      }
+      // fmax: a sample without a figure (NaN) does not hide the others. Such a sample still
+      // fails --strict: a zero quaternion through | |q| - 1 | = 1, a non-finite value through
+      // the count in non_finite_odom.
+      seg.duration_s = std::max(seg.duration_s, p.t_s);
+      seg.max_angular_speed = std::fmax(seg.max_angular_speed, p.angular_speed);
+      seg.max_abs_position = std::fmax(seg.max_abs_position, o.position_world.norm());
+      seg.max_quat_norm_error = std::fmax(seg.max_quat_norm_error, p.quat_norm_error);
+      seg.max_energy_drift = std::fmax(seg.max_energy_drift, p.energy_drift);
+      seg.max_momentum_drift = std::fmax(seg.max_momentum_drift, p.momentum_drift);
+      seg.max_orientation_error = std::fmax(seg.max_orientation_error, p.orientation_error);
+      seg.max_position_error = std::fmax(seg.max_position_error, p.position_error);
+      result.samples.push_back(p);
+    }
+    if (start) {
+      seg.max_angular_speed = std::max(
+          seg.max_angular_speed,
+          model.angular_velocity_world(start->orientation, start->angular_momentum_world).norm());
+    }
+    result.segments.push_back(seg);
+  }
+  return result;
+}
+
+}  // namespace bag
+}  // namespace virtual_go

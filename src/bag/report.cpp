@@ -1,0 +1,267 @@
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+
+#include "virtual_go/bag/report.h"
+#include "virtual_go/common/validation.h"
+
+namespace virtual_go {
+namespace bag {
+namespace {
+
+std::string fixed(double v, int digits) {
+  std::ostringstream out;
+  out << std::fixed << std::setprecision(digits) << v;
+  return out.str();
+}
+
+std::string sci(double v) {
+  if (std::isnan(v)) return "n/a";
+  std::ostringstream out;
+  out << std::scientific << std::setprecision(2) << v;
+  return out.str();
+}
+
+std::string stamp_text(std::int64_t ns) { return fixed(static_cast<double>(ns) * 1e-9, 6); }
+
+std::string vector_text(const Eigen::Vector3d& v) {
+  std::ostringstream out;
+  out << std::setprecision(6) << "(" << v.x() << ", " << v.y() << ", " << v.z() << ")";
+  return out.str();
+}
+
+// A figure listing of stamp events, the first few only: a broken topic can have thousands.
+void print_stamp_events(std::ostream& out, const std::string& topic, const char* what,
+                        const std::vector<StampEvent>& events) {
+  constexpr std::size_t kShown = 5;
+  for (std::size_t i = 0; i < events.size() && i < kShown; ++i) {
+    out << "  " << what << " " << topic << " at " << stamp_text(events[i].stamp_ns) << " s (step "
+        << fixed(static_cast<double>(events[i].step_ns) * 1e-6, 3) << " ms, message "
+        << events[i].index << ")\n";
+  }
+  if (events.size() > kShown) {
+    out << "  ... " << events.size() - kShown << " more " << what << " on " << topic << "\n";
+  }
+}
+
+}  // namespace
+
+bool Report::checks_pass() const {
+  return std::all_of(checks.begin(), checks.end(), [](const Check& c) { return c.pass; });
+}
+
+Report analyse(Recording recording, const LimitOverrides& limits) {
+  Report r;
+  r.recording = std::move(recording);
+  r.problems = r.recording.problems;
+  for (const TopicStamps& t : r.recording.topics) {
+    r.stats.push_back(compute_stamp_statistics(t.stamps_ns));
+  }
+  if (r.recording.info && !r.recording.odom.empty()) {
+    try {
+      r.physics = check_physics(*r.recording.info, r.recording.odom, r.recording.events);
+    } catch (const InvalidArgument& e) {
+      r.problems.push_back(std::string("~info cannot describe the motion: ") + e.what());
+    }
+  }
+  r.checks = run_checks(r.recording, r.stats, r.physics ? &*r.physics : nullptr, limits);
+  return r;
+}
+
+void print_report(std::ostream& out, const Report& report) {
+  const Recording& rec = report.recording;
+  out << "bag " << rec.path << ": " << rec.message_count << " messages over "
+      << fixed(rec.bag_duration_s, 3) << " s (receipt time)\n";
+
+  out << "\ntopics (periods from header stamps; * = receipt time, no header):\n";
+  out << "  " << std::left << std::setw(34) << "topic" << std::right << std::setw(7) << "count"
+      << std::setw(10) << "rate Hz" << std::setw(10) << "p50 ms" << std::setw(10) << "p99 ms"
+      << std::setw(10) << "max ms" << std::setw(6) << "gaps" << std::setw(10) << "repeated"
+      << std::setw(10) << "backwards"
+      << "\n";
+  for (std::size_t i = 0; i < rec.topics.size(); ++i) {
+    const TopicStamps& t = rec.topics[i];
+    const StampStatistics& s = report.stats[i];
+    out << "  " << std::left << std::setw(34) << (t.topic + (t.header_stamps ? "" : " *"))
+        << std::right << std::setw(7) << s.count;
+    if (t.aperiodic) {
+      out << std::setw(10) << "latched" << std::setw(30) << "" << std::setw(6) << "-";
+    } else {
+      out << std::setw(10) << fixed(s.mean_rate_hz, 2) << std::setw(10)
+          << fixed(s.period_p50_s * 1e3, 3) << std::setw(10) << fixed(s.period_p99_s * 1e3, 3)
+          << std::setw(10) << fixed(s.period_max_s * 1e3, 3) << std::setw(6) << s.gaps.size();
+    }
+    out << std::setw(10) << s.repeated.size() << std::setw(10) << s.non_increasing.size() << "\n";
+  }
+  for (std::size_t i = 0; i < rec.topics.size(); ++i) {
+    if (rec.topics[i].aperiodic) continue;
+    print_stamp_events(out, rec.topics[i].topic, "gap", report.stats[i].gaps);
+    print_stamp_events(out, rec.topics[i].topic, "repeated stamp", report.stats[i].repeated);
+    print_stamp_events(out, rec.topics[i].topic, "backwards stamp", report.stats[i].non_increasing);
+  }
+
+  if (rec.info) {
+    const RecordingInfo& i = *rec.info;
+    out << "\nstone (" << i.topic << "): model " << i.model << ", integrator " << i.integrator
+        << ", dt " << i.dt << " s, rate " << i.rate << " Hz, mass " << i.mass << " kg, moments "
+        << vector_text(i.principal_moments) << " kg m^2, gravity " << vector_text(i.gravity)
+        << " m/s^2\n";
+  }
+
+  if (report.physics) {
+    const PhysicsResult& p = *report.physics;
+    out << "\nsegments ("
+        << (rec.events_topic.empty() ? "no ~events in the bag: one from the first odom"
+                                     : "from " + rec.events_topic)
+        << "):\n";
+    out << "  " << std::right << std::setw(3) << "#"
+        << "  " << std::left << std::setw(22) << "reason" << std::right << std::setw(14)
+        << "start s" << std::setw(10) << "length s" << std::setw(8) << "odom" << std::setw(11)
+        << "|w| rad/s" << std::setw(11) << "orient rad" << std::setw(11) << "pos m" << std::setw(11)
+        << "energy" << std::setw(11) << "momentum" << std::setw(11) << "||q|-1|"
+        << "\n";
+    for (std::size_t k = 0; k < p.segments.size(); ++k) {
+      const SegmentResult& s = p.segments[k];
+      out << "  " << std::right << std::setw(3) << k << "  " << std::left << std::setw(22)
+          << s.plan.reason << std::right << std::setw(14) << stamp_text(s.plan.start_ns)
+          << std::setw(10) << fixed(s.duration_s, 3) << std::setw(8) << s.samples << std::setw(11)
+          << fixed(s.max_angular_speed, 3);
+      if (s.samples == 0) {
+        out << "  (no odom in this segment)\n";
+        continue;
+      }
+      out << std::setw(11) << (s.predicted ? sci(s.max_orientation_error) : "n/a") << std::setw(11)
+          << (s.predicted ? sci(s.max_position_error) : "n/a") << std::setw(11)
+          << sci(s.max_energy_drift) << std::setw(11) << sci(s.max_momentum_drift) << std::setw(11)
+          << sci(s.max_quat_norm_error) << "\n";
+      if (!s.note.empty()) out << "       note: " << s.note << "\n";
+    }
+    double m[5] = {0, 0, 0, 0, 0};
+    for (const SegmentResult& s : p.segments) {
+      m[0] = std::fmax(m[0], s.max_quat_norm_error);
+      m[1] = std::fmax(m[1], s.max_energy_drift);
+      m[2] = std::fmax(m[2], s.max_momentum_drift);
+      if (s.predicted) m[3] = std::fmax(m[3], s.max_orientation_error);
+      if (s.predicted) m[4] = std::fmax(m[4], s.max_position_error);
+    }
+    out << "\nphysics (" << rec.odom_topic << ", " << p.samples.size() << " samples, "
+        << p.segments.size() << " segments), maxima over the run:\n"
+        << "  max | |q| - 1 |        " << sci(m[0]) << "\n"
+        << "  energy drift           " << sci(m[1]) << " (relative)\n"
+        << "  momentum drift         " << sci(m[2]) << " (relative, world L)\n"
+        << "  orientation error      " << sci(m[3]) << " rad (vs closed form)\n"
+        << "  position error         " << sci(m[4]) << " m (vs closed form)\n";
+    auto print_non_finite = [&](const NonFiniteValues& v, const std::string& what) {
+      if (v.count == 0) return;
+      out << "  non-finite values      " << v.count << " " << what << " (first at "
+          << stamp_text(v.first_stamp_ns) << " s, " << v.first_field
+          << "), left out of the maxima above\n";
+    };
+    print_non_finite(p.non_finite_odom, "~odom samples");
+    print_non_finite(p.non_finite_events, "~events messages");
+  }
+
+  out << "\nchecks:\n";
+  std::size_t failed = 0;
+  for (const Check& c : report.checks) {
+    if (!c.pass) ++failed;
+    out << "  " << (c.pass ? "ok  " : "FAIL") << "  " << std::left << std::setw(24) << c.figure
+        << std::setw(28) << c.subject << std::right << " " << sci(c.value) << " <= " << sci(c.limit)
+        << "  (" << c.basis << ")\n";
+  }
+  for (const std::string& problem : report.problems) out << "missing: " << problem << "\n";
+  out << "\nresult: " << (failed == 0 ? "ok" : "FAIL") << ", " << report.checks.size() - failed
+      << " of " << report.checks.size() << " checks within limits"
+      << (report.partial() ? ", partial report (see 'missing')" : "") << "\n";
+}
+
+void write_csv(const std::string& path, const Report& report) {
+  std::ofstream out(path);
+  if (!out) throw OutputError("cannot write CSV " + path);
+  out << "segment,stamp_s,time_s,t_segment_s,quat_norm_error,energy_drift,momentum_drift,"
+         "orientation_error_rad,position_error_m,angular_speed_rad_s\n";
+  if (report.physics) {
+    const auto& samples = report.physics->samples;
+    const std::int64_t t0 = samples.empty() ? 0 : samples.front().stamp_ns;
+    out << std::setprecision(12);
+    for (const PhysicsSample& s : samples) {
+      out << s.segment << "," << stamp_text(s.stamp_ns).substr(0) << ","
+          << fixed(static_cast<double>(s.stamp_ns - t0) * 1e-9, 9) << "," << fixed(s.t_s, 9) << ","
+          << s.quat_norm_error << "," << s.energy_drift << "," << s.momentum_drift << ","
+          << s.orientation_error << "," << s.position_error << "," << s.angular_speed << "\n";
+    }
+  }
+  out.flush();
+  if (!out) throw OutputError("error while writing CSV " + path);
+}
+
+void write_plot(const std::string& png_path, const Report& report, const std::string& csv_path) {
+  if (!report.physics || report.physics->samples.empty()) {
+    throw OutputError("no physics time series to plot (needs ~info and ~odom)");
+  }
+  std::string data = csv_path;
+  std::string temporary;
+  if (data.empty()) {
+    char name[] = "/tmp/bag_report_XXXXXX";
+    const int fd = ::mkstemp(name);
+    if (fd < 0) throw OutputError("cannot create a temporary file for the plot data");
+    ::close(fd);
+    temporary = data = name;
+    write_csv(data, report);
+  }
+  // Quote for gnuplot's single-quoted strings (no escapes inside them except '').
+  auto quote = [](const std::string& s) {
+    std::string q = "'";
+    for (char c : s) q += c == '\'' ? std::string("''") : std::string(1, c);
+    return q + "'";
+  };
+  // Zeros cannot be shown on a log axis: floor them at 1e-18 so the line stays visible.
+  std::ostringstream script;
+  script << "set terminal png size 1200,900 noenhanced\n"
+         << "set output " << quote(png_path) << "\n"
+         << "set datafile separator ','\n"
+         << "set key outside right\n"
+         << "set logscale y\nset format y '%.0e'\nset grid\n"
+         << "f(x) = (x > 1e-18) ? x : 1e-18\n"
+         << "set multiplot layout 2,1 title " << quote("bag_report " + report.recording.path)
+         << "\n";
+  // Mark the segment starts: the prediction restarts there.
+  const auto& samples = report.physics->samples;
+  const std::int64_t t0 = samples.front().stamp_ns;
+  int arrow = 1;
+  for (const SegmentResult& s : report.physics->segments) {
+    if (arrow > 200) break;
+    script << "set arrow " << arrow++ << " from "
+           << static_cast<double>(s.plan.start_ns - t0) * 1e-9 << ", graph 0 to "
+           << static_cast<double>(s.plan.start_ns - t0) * 1e-9
+           << ", graph 1 nohead dashtype 2 linecolor rgb 'gray'\n";
+  }
+  script << "set title 'error against the exact closed form'\nset xlabel 'time (s)'\n"
+         << "plot " << quote(data) << " using 3:(f($8)) with lines title 'orientation (rad)', "
+         << "'' using 3:(f($9)) with lines title 'position (m)'\n"
+         << "set title 'invariants (relative drift)'\n"
+         << "plot " << quote(data) << " using 3:(f($5)) with lines title '| |q| - 1 |', "
+         << "'' using 3:(f($6)) with lines title 'energy', "
+         << "'' using 3:(f($7)) with lines title 'angular momentum'\n"
+         << "unset multiplot\n";
+
+  FILE* pipe = ::popen("gnuplot 1>&2", "w");
+  if (pipe == nullptr) throw OutputError("cannot run gnuplot (install gnuplot-nox)");
+  std::fputs(script.str().c_str(), pipe);
+  const int status = ::pclose(pipe);
+  if (!temporary.empty()) std::remove(temporary.c_str());
+  if (status != 0) {
+    throw OutputError("gnuplot failed (exit status " + std::to_string(status) + ") writing " +
+                      png_path + "; is gnuplot installed?");
+  }
+  std::ifstream check(png_path, std::ios::binary);
+  if (!check) throw OutputError("gnuplot did not write " + png_path);
+}
+
+}  // namespace bag
+}  // namespace virtual_go

@@ -1,0 +1,198 @@
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+
+#include "virtual_go/bag/thresholds.h"
+#include "virtual_go/flight/integrator.h"
+#include "virtual_go/common/validation.h"
+
+namespace virtual_go {
+namespace bag {
+namespace {
+
+std::string format_short(double v) {
+  std::ostringstream out;
+  out.precision(3);
+  out << v;
+  return out.str();
+}
+
+std::string known_integrators() {
+  std::string list;
+  for (const std::string& name : integrator_names()) list += (list.empty() ? "" : " ") + name;
+  return list;
+}
+
+}  // namespace
+
+const std::vector<IntegratorBound>& integrator_bounds() {
+  // The single source of these constants: --help prints them, README.md's table restates them
+  // (test_bag_analysis compares). K_q, K_E: about 4-10x the worst value measured for the
+  // default stone (see thresholds.h). K_g: the article's Euler (v += g h; x += v h) is off by
+  // exactly g h t / 2, with 1 % to spare.
+  static const std::vector<IntegratorBound> bounds{
+      {"euler", 1, 5.0, 0.5, 1.01},
+      {"rk4", 4, 0.1, 0.02, 0.0},
+      {"splitting", 2, 2.0, 0.02, 0.0},
+      {"exact", 0, 0.0, 0.0, 0.0},
+  };
+  return bounds;
+}
+
+const IntegratorBound* integrator_bound(const std::string& integrator) {
+  for (const IntegratorBound& b : integrator_bounds()) {
+    if (b.integrator == integrator) return &b;
+  }
+  return nullptr;
+}
+
+std::string default_limits_text() {
+  std::ostringstream out;
+  out << "default limits (h = dt, w = largest |omega| of the segment, T = its duration;\n"
+      << "p and K from the table below, by the integrator named in ~info):\n"
+      << "  orientation error  " << kBoundFloor << " rad + K_q (h w)^p w T\n"
+      << "  energy drift       " << kBoundFloor << " + K_E (h w)^p (1 + w T)\n"
+      << "  position error     " << kBoundFloor << " m + " << kPositionRoundOff
+      << " |x| + K_g |g| h T / 2\n"
+      << "  momentum drift     " << kBoundFloor << "\n"
+      << "  | |q| - 1 |        " << kBoundFloor << "\n\n"
+      << "  " << std::left << std::setw(12) << "integrator" << std::setw(4) << "p" << std::setw(8)
+      << "K_q" << std::setw(8) << "K_E"
+      << "K_g\n";
+  for (const std::string& name : integrator_names()) {
+    out << "  " << std::left << std::setw(12) << name;
+    const IntegratorBound* b = integrator_bound(name);
+    if (b == nullptr) {
+      out << "no default: pass every --max-* option\n";
+      continue;
+    }
+    out << std::setw(4) << b->order << std::setw(8) << b->k_orientation << std::setw(8)
+        << b->k_energy << b->k_gravity << "\n";
+  }
+  return out.str();
+}
+
+PhysicsBounds physics_bounds(const std::string& integrator, double dt, const SegmentResult& segment,
+                             double gravity_norm, const LimitOverrides& overrides) {
+  PhysicsBounds b;
+  const bool all_overridden = overrides.orientation_error && overrides.position_error &&
+                              overrides.energy_drift && overrides.momentum_drift;
+  const IntegratorBound* c = integrator_bound(integrator);
+  if (c == nullptr && !all_overridden) {
+    const std::vector<std::string> names = integrator_names();
+    const bool known = std::find(names.begin(), names.end(), integrator) != names.end();
+    throw InvalidArgument(
+        std::string(known ? "no error bound known for integrator '" : "unknown integrator '") +
+        integrator + "' in ~info (known: " + known_integrators() +
+        "); pass --max-orientation-error, --max-position-error, "
+        "--max-energy-drift and --max-momentum-drift");
+  }
+  const double w = segment.max_angular_speed, t = segment.duration_s;
+  const double hw_p = c && c->order > 0 ? std::pow(dt * w, c->order) : 0.0;
+  b.orientation_error = kBoundFloor + (c ? c->k_orientation * hw_p * w * t : 0.0);
+  b.energy_drift = kBoundFloor + (c ? c->k_energy * hw_p * (1.0 + w * t) : 0.0);
+  b.momentum_drift = kBoundFloor;
+  b.position_error = kBoundFloor + kPositionRoundOff * segment.max_abs_position;
+  if (c) b.position_error += c->k_gravity * 0.5 * gravity_norm * dt * t;
+  b.quat_norm_error = kBoundFloor;
+  b.basis = integrator + ", dt " + format_short(dt) + " s, |w| " + format_short(w) + " rad/s, T " +
+            format_short(t) + " s";
+
+  if (overrides.orientation_error) b.orientation_error = *overrides.orientation_error;
+  if (overrides.position_error) b.position_error = *overrides.position_error;
+  if (overrides.energy_drift) b.energy_drift = *overrides.energy_drift;
+  if (overrides.momentum_drift) b.momentum_drift = *overrides.momentum_drift;
+  if (overrides.quat_norm_error) b.quat_norm_error = *overrides.quat_norm_error;
+  return b;
+}
+
+std::vector<Check> run_checks(const Recording& recording, const std::vector<StampStatistics>& stats,
+                              const PhysicsResult* physics, const LimitOverrides& overrides) {
+  std::vector<Check> checks;
+  auto add = [&](std::string figure, std::string subject, double value, double limit,
+                 std::string basis) {
+    // !(value > limit) would pass a NaN; a figure that could not be computed fails.
+    const bool pass = std::isfinite(value) && value <= limit;
+    checks.push_back({std::move(figure), std::move(subject), value, limit, pass, std::move(basis)});
+  };
+
+  for (std::size_t i = 0; i < recording.topics.size() && i < stats.size(); ++i) {
+    const TopicStamps& topic = recording.topics[i];
+    const StampStatistics& s = stats[i];
+    if (topic.aperiodic || !topic.header_stamps) continue;
+    add("repeated stamps", topic.topic, static_cast<double>(s.repeated.size()), 0.0,
+        "stamps must strictly increase");
+    add("non-increasing stamps", topic.topic, static_cast<double>(s.non_increasing.size()), 0.0,
+        "stamps must strictly increase");
+    add("gaps > 2x period", topic.topic, static_cast<double>(s.gaps.size()),
+        static_cast<double>(overrides.max_gaps), "--max-gaps");
+    if (topic.at_node_rate && recording.info && recording.info->rate > 0.0 && s.count > 1) {
+      add("mean rate deviation", topic.topic, std::abs(s.mean_rate_hz / recording.info->rate - 1.0),
+          overrides.rate_tolerance,
+          "relative to ~info rate " + format_short(recording.info->rate) + " Hz, --rate-tolerance");
+    }
+  }
+
+  if (physics == nullptr || !recording.info) return checks;
+  // A message with a NaN or infinity has no figures, and the maxima skip NaN: the count
+  // itself has to fail --strict.
+  auto add_non_finite = [&](const NonFiniteValues& v, const std::string& topic) {
+    std::string basis = "every value finite";
+    if (v.count > 0) {
+      std::ostringstream first;
+      first << std::fixed << std::setprecision(6) << static_cast<double>(v.first_stamp_ns) * 1e-9;
+      basis = "first at " + first.str() + " s, " + v.first_field + "; no figures for them";
+    }
+    add("non-finite values", topic, static_cast<double>(v.count), 0.0, basis);
+  };
+  add_non_finite(physics->non_finite_odom, recording.odom_topic);
+  if (!recording.events.empty()) {
+    add_non_finite(physics->non_finite_events, recording.events_topic);
+  }
+  const RecordingInfo& info = *recording.info;
+  // Per figure, the segment closest to (or furthest over) its own limit.
+  struct Worst {
+    double ratio = -1.0;
+    Check check;
+  };
+  Worst worst[5];
+  const char* names[5] = {"max | |q| - 1 |", "energy drift", "momentum drift",
+                          "orientation error (rad)", "position error (m)"};
+  for (std::size_t k = 0; k < physics->segments.size(); ++k) {
+    const SegmentResult& seg = physics->segments[k];
+    if (seg.samples == 0) continue;
+    PhysicsBounds b;
+    try {
+      b = physics_bounds(info.integrator, info.dt, seg, info.gravity.norm(), overrides);
+    } catch (const InvalidArgument& e) {
+      add("physics bound", "segment " + std::to_string(k), NAN, 0.0, e.what());
+      return checks;
+    }
+    const double values[5] = {seg.max_quat_norm_error, seg.max_energy_drift, seg.max_momentum_drift,
+                              seg.predicted ? seg.max_orientation_error : NAN,
+                              seg.predicted ? seg.max_position_error : NAN};
+    const double limits[5] = {b.quat_norm_error, b.energy_drift, b.momentum_drift,
+                              b.orientation_error, b.position_error};
+    for (int f = 0; f < 5; ++f) {
+      double ratio = INFINITY;  // a figure that could not be computed is the worst
+      if (std::isfinite(values[f])) {
+        ratio = limits[f] > 0.0 ? values[f] / limits[f] : (values[f] > 0.0 ? INFINITY : 0.0);
+      }
+      if (ratio > worst[f].ratio) {
+        const std::string basis = f == 0 ? "a published quaternion is unit" : b.basis;
+        worst[f] = {ratio,
+                    {names[f], "segment " + std::to_string(k), values[f], limits[f],
+                     std::isfinite(values[f]) && values[f] <= limits[f],
+                     seg.predicted || f < 3 ? basis : seg.note}};
+      }
+    }
+  }
+  for (const Worst& w : worst) {
+    if (w.ratio >= 0.0) checks.push_back(w.check);
+  }
+  return checks;
+}
+
+}  // namespace bag
+}  // namespace virtual_go

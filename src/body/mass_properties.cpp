@@ -1,0 +1,38 @@
+#include "virtual_go/body/mass_properties.h"
+
+#include <cmath>
+
+#include "virtual_go/common/validation.h"
+
+namespace virtual_go {
+
+MassProperties::MassProperties(double mass, const Eigen::Vector3d& principal_moments_body)
+    : mass_(mass), moments_body_(principal_moments_body) {
+  require_positive("mass", mass);
+  require_positive("principal moment Ixx", principal_moments_body.x());
+  require_positive("principal moment Iyy", principal_moments_body.y());
+  require_positive("principal moment Izz", principal_moments_body.z());
+}
+
+MassProperties MassProperties::of_lens(const StoneShape& shape, double density) {
+  require_positive("density", density);
+  const double a = shape.half_width(), c = shape.half_height();
+  const double a2 = a * a, c2 = c * c;
+  const double mass = density * shape.volume();
+  // Closed forms (DESIGN.md): axial I3 and transverse I1 of a biconvex lens.
+  const double i3 = M_PI * density * c * (10 * a2 * a2 + 5 * a2 * c2 + c2 * c2) / 30;
+  const double i1 = M_PI * density * c * (10 * a2 * a2 + 15 * a2 * c2 + 7 * c2 * c2) / 60;
+  return MassProperties(mass, Eigen::Vector3d(i1, i1, i3));
+}
+
+MassProperties MassProperties::of_lens_with_mass(const StoneShape& shape, double mass) {
+  require_positive("mass", mass);
+  return of_lens(shape, mass / shape.volume());
+}
+
+bool MassProperties::is_axisymmetric() const {
+  return std::abs(moments_body_.x() - moments_body_.y()) <=
+         1e-12 * std::max(moments_body_.x(), moments_body_.y());
+}
+
+}  // namespace virtual_go

@@ -1,0 +1,331 @@
+// bag_report's analysis units on plain data: no bag, no master.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "support/test_bags.h"
+#include "virtual_go/bag/options.h"
+#include "virtual_go/bag/physics_check.h"
+#include "virtual_go/bag/report.h"
+#include "virtual_go/bag/stamp_statistics.h"
+#include "virtual_go/bag/thresholds.h"
+#include "virtual_go/flight/integrator.h"
+#include "virtual_go/common/validation.h"
+
+namespace vb = virtual_go::bag;
+
+namespace {
+
+constexpr std::int64_t kMs = 1000000;
+
+vb::RecordingInfo info(const std::string& integrator = "exact") {
+  vb::RecordingInfo i;
+  i.topic = "/stone/info";
+  i.mass = virtual_go_test::kMass;
+  i.principal_moments = {virtual_go_test::kI1, virtual_go_test::kI1, virtual_go_test::kI3};
+  i.model = "rigid_body";
+  i.integrator = integrator;
+  i.dt = 1e-3;
+  i.dt_ns = kMs;
+  i.rate = 50.0;
+  i.gravity = {0.0, 0.0, -9.80665};
+  return i;
+}
+
+vb::OdomSample odom_at(std::int64_t stamp_ns, double t) {
+  const virtual_go_test::TrueState s = virtual_go_test::true_state(t);
+  vb::OdomSample o;
+  o.stamp_ns = stamp_ns;
+  o.position_world = s.position;
+  o.orientation_raw = s.orientation;
+  o.velocity_body = s.orientation.conjugate() * s.velocity_world;
+  o.angular_velocity_body = s.angular_velocity_body;
+  return o;
+}
+
+vb::SegmentEvent event_at(std::int64_t stamp_ns, const std::string& reason) {
+  vb::SegmentEvent e;
+  e.stamp_ns = stamp_ns;
+  e.reason = reason;
+  return e;
+}
+
+TEST(StampStatistics, RegularStamps) {
+  std::vector<std::int64_t> stamps;
+  for (int i = 0; i < 101; ++i) stamps.push_back(5000 * kMs + i * 20 * kMs);
+  const vb::StampStatistics s = vb::compute_stamp_statistics(stamps);
+  EXPECT_EQ(s.count, 101u);
+  EXPECT_NEAR(s.mean_rate_hz, 50.0, 1e-9);
+  EXPECT_NEAR(s.period_p50_s, 0.02, 1e-12);
+  EXPECT_NEAR(s.period_p99_s, 0.02, 1e-12);
+  EXPECT_NEAR(s.period_max_s, 0.02, 1e-12);
+  EXPECT_TRUE(s.gaps.empty());
+  EXPECT_TRUE(s.repeated.empty());
+  EXPECT_TRUE(s.non_increasing.empty());
+}
+
+TEST(StampStatistics, GapRepeatAndBackwards) {
+  const std::vector<std::int64_t> stamps = {0,        10 * kMs, 20 * kMs, 20 * kMs, 30 * kMs,
+                                            70 * kMs, 80 * kMs, 75 * kMs, 90 * kMs};
+  const vb::StampStatistics s = vb::compute_stamp_statistics(stamps);
+  ASSERT_EQ(s.repeated.size(), 1u);
+  EXPECT_EQ(s.repeated[0].index, 3u);
+  ASSERT_EQ(s.non_increasing.size(), 1u);
+  EXPECT_EQ(s.non_increasing[0].stamp_ns, 75 * kMs);
+  ASSERT_EQ(s.gaps.size(), 1u);  // 30 -> 70 ms is 4x the 10 ms median
+  EXPECT_EQ(s.gaps[0].step_ns, 40 * kMs);
+  EXPECT_NEAR(s.period_max_s, 0.04, 1e-12);
+  EXPECT_NEAR(s.period_p50_s, 0.01, 1e-12);
+}
+
+TEST(StampStatistics, DegenerateInputs) {
+  EXPECT_EQ(vb::compute_stamp_statistics({}).count, 0u);
+  const vb::StampStatistics one = vb::compute_stamp_statistics({42});
+  EXPECT_EQ(one.count, 1u);
+  EXPECT_EQ(one.mean_rate_hz, 0.0);
+  EXPECT_EQ(vb::percentile({}, 50.0), 0.0);
+  EXPECT_EQ(vb::percentile({3.0, 1.0, 2.0, 4.0}, 50.0), 2.0);
+  EXPECT_EQ(vb::percentile({3.0, 1.0, 2.0, 4.0}, 99.0), 4.0);
+}
+
+TEST(PlanSegments, NoEventsIsOneSegmentFromTheFirstOdom) {
+  std::vector<vb::OdomSample> odom = {odom_at(10, 0), odom_at(20, 0), odom_at(30, 0)};
+  const auto plans = vb::plan_segments(odom, {});
+  ASSERT_EQ(plans.size(), 1u);
+  EXPECT_FALSE(plans[0].from_event);
+  EXPECT_EQ(plans[0].start_ns, 10);
+  EXPECT_EQ(plans[0].end, 3u);
+}
+
+TEST(PlanSegments, EventsSplitByStamp) {
+  std::vector<vb::OdomSample> odom;
+  for (int i = 0; i < 10; ++i) odom.push_back(odom_at(100 + 10 * i, 0));
+  // The start event, a reset between samples 4 and 5, an event after the last sample.
+  const auto plans = vb::plan_segments(
+      odom, {event_at(100, "start"), event_at(145, "reset"), event_at(500, "set_state")});
+  ASSERT_EQ(plans.size(), 3u);
+  EXPECT_EQ(plans[0].first, 0u);
+  EXPECT_EQ(plans[0].end, 5u);
+  EXPECT_EQ(plans[1].reason, "reset");
+  EXPECT_EQ(plans[1].start_ns, 145);
+  EXPECT_EQ(plans[1].first, 5u);
+  EXPECT_EQ(plans[1].end, 10u);
+  EXPECT_EQ(plans[2].first, plans[2].end);  // listed, but empty
+}
+
+TEST(PlanSegments, TimeJumpBackwards) {
+  // A looping bag: stamps 100..140, then 50..70 with a time_jump event at 50.
+  std::vector<vb::OdomSample> odom;
+  for (std::int64_t s : {100, 110, 120, 130, 140, 50, 60, 70}) odom.push_back(odom_at(s, 0));
+  const auto plans = vb::plan_segments(odom, {event_at(100, "start"), event_at(50, "time_jump")});
+  ASSERT_EQ(plans.size(), 2u);
+  EXPECT_EQ(plans[0].end, 5u);
+  EXPECT_EQ(plans[1].reason, "time_jump");
+  EXPECT_EQ(plans[1].first, 5u);
+  EXPECT_EQ(plans[1].end, 8u);
+  // Without the event the jump still starts a new segment (and says so).
+  const auto unexplained = vb::plan_segments(odom, {event_at(100, "start")});
+  ASSERT_EQ(unexplained.size(), 2u);
+  EXPECT_EQ(unexplained[1].reason, "stamps went backwards (no event)");
+}
+
+TEST(CheckPhysics, ExactRecordingHasNoError) {
+  std::vector<vb::OdomSample> odom;
+  for (int i = 0; i <= 100; ++i) odom.push_back(odom_at(i * 20 * kMs, i * 0.02));
+  const vb::PhysicsResult r = vb::check_physics(info(), odom, {});
+  ASSERT_EQ(r.segments.size(), 1u);
+  const vb::SegmentResult& s = r.segments[0];
+  EXPECT_TRUE(s.predicted);
+  EXPECT_LT(s.max_orientation_error, 1e-12);
+  EXPECT_LT(s.max_position_error, 1e-12);
+  EXPECT_LT(s.max_energy_drift, 1e-12);
+  EXPECT_LT(s.max_momentum_drift, 1e-12);
+  EXPECT_LT(s.max_quat_norm_error, 1e-12);
+  EXPECT_NEAR(s.duration_s, 2.0, 1e-12);
+  EXPECT_GT(s.max_angular_speed, 25.0);
+  EXPECT_EQ(r.samples.size(), 101u);
+}
+
+TEST(CheckPhysics, DetectsOrientationAndPositionErrors) {
+  std::vector<vb::OdomSample> odom;
+  for (int i = 0; i <= 10; ++i) odom.push_back(odom_at(i * 20 * kMs, i * 0.02));
+  odom[5].orientation_raw = Eigen::Quaterniond(Eigen::AngleAxisd(1e-6, Eigen::Vector3d::UnitZ())) *
+                            odom[5].orientation_raw;
+  odom[7].position_world.x() += 1e-6;
+  odom[8].orientation_raw.coeffs() *= 1.001;  // not unit
+  const vb::PhysicsResult r = vb::check_physics(info(), odom, {});
+  EXPECT_NEAR(r.samples[5].orientation_error, 1e-6, 1e-9);
+  EXPECT_NEAR(r.samples[7].position_error, 1e-6, 1e-12);
+  EXPECT_NEAR(r.samples[8].quat_norm_error, 1e-3, 1e-9);
+  EXPECT_LT(r.samples[8].orientation_error, 1e-12) << "normalised before comparing";
+}
+
+TEST(CheckPhysics, MomentumDriftIsRelativeToTheFirstL) {
+  std::vector<vb::OdomSample> odom{odom_at(0, 0.0), odom_at(20 * kMs, 0.02)};
+  odom[1].angular_velocity_body *= 3.0;  // |L| = 3 |L0|: drift 2 against |L0| (not 2/3)
+  const vb::PhysicsResult r = vb::check_physics(info(), odom, {});
+  EXPECT_NEAR(r.samples[1].momentum_drift, 2.0, 1e-9);
+
+  // Starting at rest there is no |L0|: the segment's largest |L| is the scale instead.
+  odom[0].angular_velocity_body.setZero();
+  odom[1].angular_velocity_body.setZero();
+  EXPECT_EQ(vb::check_physics(info(), odom, {}).segments[0].max_momentum_drift, 0.0);
+  odom[1].angular_velocity_body = {0.0, 0.0, 5.0};
+  EXPECT_NEAR(vb::check_physics(info(), odom, {}).samples[1].momentum_drift, 1.0, 1e-12);
+}
+
+TEST(CheckPhysics, NonFiniteValuesAreCountedNotFatal) {
+  std::vector<vb::OdomSample> odom;
+  for (int i = 0; i <= 10; ++i) odom.push_back(odom_at(i * 20 * kMs, i * 0.02));
+  odom[3].velocity_body.y() = NAN;
+  odom[5].position_world.x() = INFINITY;
+  const vb::PhysicsResult r = vb::check_physics(info(), odom, {});
+  EXPECT_EQ(r.non_finite_odom.count, 2u);
+  EXPECT_EQ(r.non_finite_odom.first_stamp_ns, 60 * kMs);
+  EXPECT_EQ(r.non_finite_odom.first_field, "linear velocity");
+  EXPECT_TRUE(std::isnan(r.samples[3].energy_drift));
+  EXPECT_TRUE(std::isnan(r.samples[5].orientation_error));
+  ASSERT_EQ(r.segments.size(), 1u);
+  EXPECT_TRUE(r.segments[0].predicted);
+  EXPECT_LT(r.segments[0].max_orientation_error, 1e-12) << "the other samples keep their figures";
+
+  vb::Recording rec;
+  rec.info = info();
+  rec.odom_topic = "/stone/odom";
+  const auto checks = vb::run_checks(rec, {}, &r, vb::LimitOverrides{});
+  bool counted = false;
+  for (const vb::Check& c : checks) {
+    if (c.figure == "non-finite values") counted = !c.pass && c.value == 2.0;
+  }
+  EXPECT_TRUE(counted) << "a NaN sample must fail --strict";
+
+  // A non-finite event cannot start a prediction; it is counted too.
+  vb::SegmentEvent bad = event_at(0, "start");
+  bad.angular_momentum_world.z() = NAN;
+  const vb::PhysicsResult e = vb::check_physics(info(), {odom_at(0, 0.0)}, {bad});
+  EXPECT_EQ(e.non_finite_events.count, 1u);
+  ASSERT_EQ(e.segments.size(), 1u);
+  EXPECT_FALSE(e.segments[0].predicted);
+  EXPECT_NE(e.segments[0].note.find("angular momentum"), std::string::npos) << e.segments[0].note;
+}
+
+TEST(CheckPhysics, BadInfoIsRejected) {
+  vb::RecordingInfo bad = info();
+  bad.model = "quantum";
+  EXPECT_THROW(vb::check_physics(bad, {odom_at(0, 0)}, {}), virtual_go::InvalidArgument);
+  bad = info();
+  bad.mass = 0.0;
+  EXPECT_THROW(vb::check_physics(bad, {odom_at(0, 0)}, {}), virtual_go::InvalidArgument);
+}
+
+TEST(CheckPhysics, NonAxisymmetricInertiaHasNoPrediction) {
+  vb::RecordingInfo i = info();
+  i.principal_moments.y() *= 1.5;
+  const vb::PhysicsResult r = vb::check_physics(i, {odom_at(0, 0), odom_at(kMs, 0.001)}, {});
+  ASSERT_EQ(r.segments.size(), 1u);
+  EXPECT_FALSE(r.segments[0].predicted);
+  EXPECT_NE(r.segments[0].note.find("axisymmetric"), std::string::npos);
+}
+
+TEST(Thresholds, BoundsFollowTheIntegrator) {
+  vb::SegmentResult seg;
+  seg.max_angular_speed = 20.0;
+  seg.duration_s = 5.0;
+  const vb::LimitOverrides none;
+  const double g = 9.80665;
+  EXPECT_DOUBLE_EQ(vb::physics_bounds("exact", 1e-3, seg, g, none).orientation_error, 1e-9);
+  const double split = vb::physics_bounds("splitting", 1e-3, seg, g, none).orientation_error;
+  EXPECT_NEAR(split, 1e-9 + 2.0 * 0.02 * 0.02 * 20.0 * 5.0, 1e-12);
+  EXPECT_GT(vb::physics_bounds("euler", 1e-3, seg, g, none).position_error, 0.5 * g * 1e-3 * 5.0);
+  EXPECT_THROW(vb::physics_bounds("leapfrog", 1e-3, seg, g, none), virtual_go::InvalidArgument);
+  vb::LimitOverrides given;
+  given.orientation_error = 0.5;
+  EXPECT_EQ(vb::physics_bounds("exact", 1e-3, seg, g, given).orientation_error, 0.5);
+}
+
+TEST(Thresholds, EveryIntegratorHasABound) {
+  const std::vector<std::string> names = virtual_go::integrator_names();
+  for (const std::string& name : names) {
+    EXPECT_NE(vb::integrator_bound(name), nullptr) << name;
+    EXPECT_NE(vb::default_limits_text().find("  " + name + " "), std::string::npos) << name;
+  }
+  for (const vb::IntegratorBound& b : vb::integrator_bounds()) {
+    EXPECT_NE(std::find(names.begin(), names.end(), b.integrator), names.end()) << b.integrator;
+  }
+  try {
+    vb::physics_bounds("leapfrog", 1e-3, vb::SegmentResult{}, 9.8, vb::LimitOverrides{});
+    ADD_FAILURE() << "no throw";
+  } catch (const virtual_go::InvalidArgument& e) {
+    EXPECT_NE(std::string(e.what()).find("known: euler rk4 splitting exact"), std::string::npos)
+        << e.what();
+  }
+}
+
+// README.md restates the constants for readers; this keeps it honest.
+TEST(Thresholds, ReadmeTableMatchesTheCode) {
+  std::ifstream readme(VG_README);
+  ASSERT_TRUE(readme) << VG_README;
+  std::map<std::string, std::vector<double>> rows;
+  std::string line;
+  while (std::getline(readme, line)) {
+    if (line.rfind("| ", 0) != 0) continue;
+    std::vector<std::string> cells;
+    std::stringstream in(line.substr(1));
+    std::string cell;
+    while (std::getline(in, cell, '|')) cells.push_back(cell);
+    if (cells.size() != 5) continue;
+    const std::string name = cells[0].substr(1, cells[0].size() - 2);
+    if (vb::integrator_bound(name) == nullptr) continue;
+    for (std::size_t i = 1; i < cells.size(); ++i) {
+      rows[name].push_back(std::strtod(cells[i].c_str(), nullptr));  // "0 (so ...)" reads 0
+    }
+  }
+  for (const vb::IntegratorBound& b : vb::integrator_bounds()) {
+    ASSERT_EQ(rows[b.integrator].size(), 4u) << "no README row for " << b.integrator;
+    const std::vector<double>& r = rows[b.integrator];
+    EXPECT_EQ(r[0], b.order) << b.integrator;
+    EXPECT_EQ(r[1], b.k_orientation) << b.integrator;
+    EXPECT_EQ(r[2], b.k_energy) << b.integrator;
+    EXPECT_EQ(r[3], b.k_gravity) << b.integrator;
+  }
+}
+
+TEST(Thresholds, NanFigureFails) {
+  vb::Recording rec;
+  rec.info = info();
+  vb::PhysicsResult physics;
+  vb::SegmentResult seg;
+  seg.samples = 3;
+  seg.predicted = false;
+  seg.note = "no closed form";
+  physics.segments.push_back(seg);
+  const auto checks = vb::run_checks(rec, {}, &physics, vb::LimitOverrides{});
+  bool orientation_failed = false;
+  for (const vb::Check& c : checks) {
+    if (c.figure.rfind("orientation", 0) == 0) orientation_failed = !c.pass;
+  }
+  EXPECT_TRUE(orientation_failed) << "a figure that cannot be computed must not pass --strict";
+}
+
+TEST(Options, Parse) {
+  const vb::Options o = vb::parse_options(
+      {"run.bag", "--csv", "a.csv", "--strict", "--max-gaps", "3", "--node-namespace", "/s"});
+  EXPECT_EQ(o.bag_path, "run.bag");
+  EXPECT_EQ(o.csv_path, "a.csv");
+  EXPECT_TRUE(o.strict);
+  EXPECT_EQ(o.limits.max_gaps, 3u);
+  EXPECT_EQ(o.node_namespace, "/s");
+  EXPECT_TRUE(vb::parse_options({"--help"}).help);
+  EXPECT_THROW(vb::parse_options({}), vb::UsageError);
+  EXPECT_THROW(vb::parse_options({"a.bag", "b.bag"}), vb::UsageError);
+  EXPECT_THROW(vb::parse_options({"a.bag", "--csv"}), vb::UsageError);
+  EXPECT_THROW(vb::parse_options({"a.bag", "--max-energy-drift", "-1"}), vb::UsageError);
+  EXPECT_THROW(vb::parse_options({"a.bag", "--max-energy-drift", "nan"}), vb::UsageError);
+}
+
+}  // namespace

@@ -1,0 +1,261 @@
+// Runs the real bag_report binary on generated bags and checks its output and exit code.
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "support/test_bags.h"
+
+namespace {
+
+using virtual_go_test::SyntheticRun;
+using virtual_go_test::write_run_bag;
+
+struct Result {
+  int exit_code = -1;
+  std::string out;
+  std::string err;
+};
+
+std::string dir() {
+  static const std::string d = [] {
+    const std::string path = BAG_TEST_DIR;
+    ::mkdir(path.c_str(), 0755);
+    return path;
+  }();
+  return d;
+}
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+Result run_report(const std::string& args) {
+  const std::string out = dir() + "/stdout.txt", err = dir() + "/stderr.txt";
+  const std::string cmd = std::string(BAG_REPORT_PATH) + " " + args + " >" + out + " 2>" + err;
+  const int status = std::system(cmd.c_str());
+  Result r;
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  r.out = read_text(out);
+  r.err = read_text(err);
+  return r;
+}
+
+std::size_t lines(const std::string& text) {
+  std::size_t n = 0;
+  for (char c : text) n += c == '\n';
+  return n;
+}
+
+// A failure is one line on stderr, never an abort or a stack trace.
+void expect_clean_error(const Result& r) {
+  EXPECT_EQ(lines(r.err), 1u) << r.err;
+  EXPECT_EQ(r.err.find("terminate"), std::string::npos) << r.err;
+  EXPECT_LT(r.exit_code, 128) << "killed by a signal";
+}
+
+std::string bag(const std::string& name, const SyntheticRun& run) {
+  const std::string path = dir() + "/" + name + ".bag";
+  write_run_bag(path, run);
+  return path;
+}
+
+TEST(BagReportCli, GoodRunPassesStrict) {
+  const std::string path = bag("good", SyntheticRun{});
+  const std::string csv = dir() + "/good.csv", png = dir() + "/good.png";
+  std::remove(csv.c_str());
+  std::remove(png.c_str());
+  const Result r = run_report(path + " --strict --csv " + csv + " --plot " + png);
+  EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("result: ok"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("/stone/odom"), std::string::npos);
+  EXPECT_NE(r.out.find("/tf world->stone"), std::string::npos);
+  EXPECT_NE(r.out.find("start"), std::string::npos);  // the one segment
+  EXPECT_EQ(r.out.find("FAIL"), std::string::npos) << r.out;
+  // 2 s at 50 Hz: 101 odom rows plus the header.
+  EXPECT_EQ(lines(read_text(csv)), 102u);
+  const std::string png_bytes = read_text(png);
+  ASSERT_GT(png_bytes.size(), 8u) << r.err;
+  EXPECT_EQ(png_bytes.substr(1, 3), "PNG");
+}
+
+TEST(BagReportCli, GapAndDuplicatedStampAreReported) {
+  SyntheticRun run;
+  run.drop = {30, 31};   // a 60 ms step at 100.62 s
+  run.duplicate = {50};  // 101.0 s twice
+  const std::string path = bag("gap_dup", run);
+  const Result r = run_report(path);
+  EXPECT_EQ(r.exit_code, 0) << "without --strict the report itself succeeds\n" << r.err;
+  EXPECT_NE(r.out.find("gap /stone/odom at 100.640000 s (step 60.000 ms"), std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("repeated stamp /stone/odom at 101.000000 s"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("repeated stamp /tf world->stone"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("FAIL  repeated stamps"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("FAIL  gaps > 2x period"), std::string::npos) << r.out;
+
+  const Result strict = run_report(path + " --strict");
+  EXPECT_EQ(strict.exit_code, 1);
+  // A gap allowance lets the gap pass; the repeated stamp still fails.
+  const Result lenient = run_report(path + " --strict --max-gaps 1");
+  EXPECT_EQ(lenient.exit_code, 1);
+  EXPECT_EQ(lenient.out.find("FAIL  gaps"), std::string::npos) << lenient.out;
+}
+
+TEST(BagReportCli, ResetEventRestartsThePrediction) {
+  SyntheticRun run;
+  run.reset_after = 1.0;
+  const Result r = run_report(bag("reset", run) + " --strict");
+  EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("reset"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("2 segments"), std::string::npos) << r.out;
+
+  // The same jump without its event is a real error, and is reported as one.
+  run.reset_without_event = true;
+  const Result hidden = run_report(bag("reset_no_event", run) + " --strict");
+  EXPECT_EQ(hidden.exit_code, 1) << hidden.out;
+  EXPECT_NE(hidden.out.find("FAIL  orientation error"), std::string::npos) << hidden.out;
+}
+
+TEST(BagReportCli, WithoutEventsOneSegmentFromTheFirstOdom) {
+  SyntheticRun run;
+  run.with_events = false;
+  const Result r = run_report(bag("no_events", run) + " --strict");
+  EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("first odom"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("1 segments"), std::string::npos) << r.out;
+}
+
+TEST(BagReportCli, OrientationErrorOverTheIntegratorBoundFails) {
+  SyntheticRun run;
+  run.orientation_drift_rate = 1e-6;  // 2e-6 rad after 2 s: far over exact's 1e-9
+  const Result exact = run_report(bag("drift_exact", run) + " --strict");
+  EXPECT_EQ(exact.exit_code, 1) << exact.out;
+  EXPECT_NE(exact.out.find("FAIL  orientation error"), std::string::npos) << exact.out;
+  // An explicit limit replaces the integrator's. (The drift leaves the body rates as they
+  // were, so the reconstructed world L drifts too: that needs its own allowance.)
+  const std::string allow_l = " --max-momentum-drift 1e-5";
+  const Result loose =
+      run_report(bag("drift_exact", run) + " --strict --max-orientation-error 1e-5" + allow_l);
+  EXPECT_EQ(loose.exit_code, 0) << loose.out;
+  // splitting at dt 1 ms and |w| ~ 25 rad/s allows about 2 (0.025)^2 25 * 2 = 6e-2 rad.
+  run.integrator = "splitting";
+  const Result splitting = run_report(bag("drift_splitting", run) + " --strict" + allow_l);
+  EXPECT_EQ(splitting.exit_code, 0) << splitting.out;
+}
+
+TEST(BagReportCli, NonFiniteOdomSampleIsReportedAndTheRestGoesOn) {
+  SyntheticRun run;
+  run.nan_odom = {30};  // position x NaN at 100.6 s
+  const std::string path = bag("nan_odom", run);
+  const std::string csv = dir() + "/nan_odom.csv";
+  const Result r = run_report(path + " --csv " + csv);
+  EXPECT_EQ(r.exit_code, 0) << "without --strict the report itself succeeds\n" << r.err;
+  EXPECT_NE(r.out.find("non-finite values      1 ~odom samples (first at 100.600000 s, position)"),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("FAIL  non-finite values"), std::string::npos) << r.out;
+  // The physics figures of every other sample are still there, and within the bounds.
+  EXPECT_EQ(r.out.find("cannot describe"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("ok    orientation error"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("ok    energy drift"), std::string::npos) << r.out;
+  EXPECT_EQ(lines(read_text(csv)), 102u);
+  EXPECT_NE(read_text(csv).find("nan"), std::string::npos) << "the sample is marked NaN";
+
+  const Result strict = run_report(path + " --strict");
+  EXPECT_EQ(strict.exit_code, 1) << strict.out << strict.err;
+}
+
+TEST(BagReportCli, BagWithoutInfoIsAPartialReport) {
+  SyntheticRun run;
+  run.with_info = false;
+  const Result r = run_report(bag("no_info", run));
+  EXPECT_EQ(r.exit_code, 4) << r.out << r.err;
+  EXPECT_NE(r.out.find("/stone/odom"), std::string::npos) << "topic figures still printed";
+  EXPECT_NE(r.out.find("missing: no virtual_go/StoneInfo"), std::string::npos) << r.out;
+  expect_clean_error(r);
+}
+
+TEST(BagReportCli, EmptyBag) {
+  const std::string path = dir() + "/empty.bag";
+  virtual_go_test::write_empty_bag(path);
+  const Result r = run_report(path + " --strict");
+  EXPECT_EQ(r.exit_code, 4) << r.out << r.err;
+  EXPECT_NE(r.err.find("no messages"), std::string::npos) << r.err;
+  expect_clean_error(r);
+}
+
+TEST(BagReportCli, TruncatedBag) {
+  const std::string good = bag("to_truncate", SyntheticRun{});
+  const std::string bytes = read_text(good);
+  for (const double fraction : {0.9, 0.5, 0.1}) {
+    const std::string path = dir() + "/truncated.bag";
+    std::ofstream(path, std::ios::binary)
+        << bytes.substr(0, static_cast<std::size_t>(bytes.size() * fraction));
+    const Result r = run_report(path);
+    EXPECT_EQ(r.exit_code, 3) << fraction << "\n" << r.out << r.err;
+    EXPECT_NE(r.err.find("truncated.bag"), std::string::npos) << r.err;
+    expect_clean_error(r);
+  }
+}
+
+TEST(BagReportCli, CorruptChunkGivesAPartialReportOrAnError) {
+  // Garbage in the middle of the data, index intact: either a clean error or a partial report.
+  const std::string good = bag("to_corrupt", SyntheticRun{});
+  std::string bytes = read_text(good);
+  for (std::size_t i = bytes.size() / 3; i < bytes.size() / 3 + 2000; ++i) bytes[i] = '\x7f';
+  const std::string path = dir() + "/corrupt.bag";
+  std::ofstream(path, std::ios::binary) << bytes;
+  const Result r = run_report(path);
+  EXPECT_TRUE(r.exit_code == 3 || r.exit_code == 4 || r.exit_code == 0) << r.exit_code << r.err;
+  EXPECT_LT(r.exit_code, 128) << "killed by a signal";
+  EXPECT_LE(lines(r.err), 1u) << r.err;
+}
+
+TEST(BagReportCli, MissingFileAndNotABag) {
+  const Result missing = run_report(dir() + "/does_not_exist.bag");
+  EXPECT_EQ(missing.exit_code, 3);
+  EXPECT_NE(missing.err.find("no such file"), std::string::npos) << missing.err;
+  expect_clean_error(missing);
+
+  const std::string text = dir() + "/not_a_bag.bag";
+  std::ofstream(text) << "hello, I am not a bag\n";
+  const Result not_bag = run_report(text);
+  EXPECT_EQ(not_bag.exit_code, 3);
+  expect_clean_error(not_bag);
+}
+
+TEST(BagReportCli, UsageAndHelp) {
+  const Result help = run_report("--help");
+  EXPECT_EQ(help.exit_code, 0);
+  EXPECT_NE(help.out.find("exit codes"), std::string::npos);
+  const Result none = run_report("");
+  EXPECT_EQ(none.exit_code, 2);
+  expect_clean_error(none);
+  const Result bad = run_report("x.bag --max-gaps lots");
+  EXPECT_EQ(bad.exit_code, 2);
+  expect_clean_error(bad);
+  const Result unknown = run_report("x.bag --frobnicate");
+  EXPECT_EQ(unknown.exit_code, 2);
+  expect_clean_error(unknown);
+}
+
+TEST(BagReportCli, UnwritableOutput) {
+  const Result r = run_report(bag("good_out", SyntheticRun{}) + " --csv /nonexistent/dir/x.csv");
+  EXPECT_EQ(r.exit_code, 5);
+  expect_clean_error(r);
+}
+
+TEST(BagReportCli, TopicsFoundByTypeUnderAnotherNamespace) {
+  // No /other/odom etc.: the unique topics of each type are used.
+  const Result r = run_report(bag("good_ns", SyntheticRun{}) + " --strict --node-namespace /other");
+  EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
+}
+
+}  // namespace

@@ -1,0 +1,37 @@
+# Tests of bag_report (README.md, "Recording, replay and bag_report"). Included by CMakeLists.txt inside CATKIN_ENABLE_TESTING.
+
+# The analysis on plain data (no bag, no master).
+catkin_add_gtest(test_bag_analysis test/bag/test_bag_analysis.cpp test/support/test_bags.cpp)
+target_link_libraries(test_bag_analysis virtual_go_bag_report GTest::gtest_main)
+# Checks README.md's table of error-bound constants against the code.
+target_compile_definitions(test_bag_analysis PRIVATE VG_README="${PROJECT_SOURCE_DIR}/README.md")
+
+# The real binary on bags the test writes with the rosbag C++ API.
+catkin_add_gtest(test_bag_report_cli test/bag/test_bag_report_cli.cpp test/support/test_bags.cpp)
+target_link_libraries(test_bag_report_cli virtual_go_bag_report GTest::gtest_main)
+target_compile_definitions(test_bag_report_cli PRIVATE
+  BAG_REPORT_PATH="$<TARGET_FILE:bag_report>"
+  BAG_TEST_DIR="${CMAKE_CURRENT_BINARY_DIR}/bag_report_test")
+add_dependencies(test_bag_report_cli bag_report)
+
+# Records the live node, then holds the bag to bag_report --strict. add_rostest_gtest cannot
+# pass launch arguments, hence add_rostest with ARGS and the executable by hand.
+add_executable(test_bag_record_live EXCLUDE_FROM_ALL test/bag/test_bag_record_live.cpp)
+target_link_libraries(test_bag_record_live virtual_go_bag_report GTest::gtest)
+target_compile_definitions(test_bag_record_live PRIVATE
+  BAG_REPORT_PATH="$<TARGET_FILE:bag_report>")
+add_dependencies(test_bag_record_live bag_report stone_node)
+add_dependencies(tests test_bag_record_live)
+# The default scene (exact integrator, 1e-9 rad), and again with splitting (a dt-based bound).
+add_rostest(test/bag/bag_record.test DEPENDENCIES test_bag_record_live
+  ARGS bag:=${CMAKE_CURRENT_BINARY_DIR}/bag_record_live.bag)
+add_rostest(test/bag/bag_record.test DEPENDENCIES test_bag_record_live
+  ARGS bag:=${CMAKE_CURRENT_BINARY_DIR}/bag_record_live_splitting.bag integrator:=splitting)
+
+# Replay: rosbag play --clock with use_sim_time gives tf2 the recorded motion (no node needed).
+add_executable(test_bag_replay EXCLUDE_FROM_ALL test/bag/test_bag_replay.cpp
+  test/support/test_bags.cpp)
+target_link_libraries(test_bag_replay virtual_go_bag_report GTest::gtest)
+add_dependencies(tests test_bag_replay)
+add_rostest(test/bag/bag_replay.test DEPENDENCIES test_bag_replay
+  ARGS bag:=${CMAKE_CURRENT_BINARY_DIR}/bag_replay.bag)

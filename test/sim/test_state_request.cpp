@@ -1,0 +1,105 @@
+// Request validation: bad values are refused with the field named; good ones build a state.
+#include "virtual_go/sim/state_request.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "virtual_go/body/mass_properties.h"
+#include "virtual_go/common/validation.h"
+
+namespace vg = virtual_go;
+
+namespace {
+
+const double kNaN = std::numeric_limits<double>::quiet_NaN();
+const double kInf = std::numeric_limits<double>::infinity();
+const vg::AngularVelocityLimit kLimit{100.0, 1.0, 0.001, "rk4"};
+const vg::StateFieldNames kFields{"pose.position", "pose.orientation", "twist.linear",
+                                  "twist.angular"};
+
+vg::MotionModel model() {
+  return vg::MotionModel(vg::MotionModelKind::rigid_body,
+                         vg::MassProperties(0.005, Eigen::Vector3d(1.2e-7, 1.2e-7, 2.0e-7)));
+}
+
+std::string refusal(const std::function<void()>& request) {
+  try {
+    request();
+  } catch (const vg::InvalidArgument& e) {
+    return e.what();
+  }
+  return "accepted";
+}
+
+bool starts_with(const std::string& text, const std::string& prefix) {
+  return text.rfind(prefix, 0) == 0;
+}
+
+}  // namespace
+
+TEST(StateRequest, AngularVelocityLimits) {
+  EXPECT_NO_THROW(vg::check_angular_velocity("w", Eigen::Vector3d(0, 60, 80), kLimit));
+  const std::string over = refusal(
+      [] { vg::check_angular_velocity("angular_velocity", Eigen::Vector3d(0, 60, 81), kLimit); });
+  EXPECT_TRUE(starts_with(over, "angular_velocity: |w|")) << over;
+  EXPECT_NE(over.find("max_angular_velocity"), std::string::npos) << over;
+  // The integrator's own limit (1 rad per step at dt 1 ms = 1000 rad/s) binds when lower.
+  const vg::AngularVelocityLimit slow{5000.0, 1.0, 0.001, "rk4"};
+  const std::string fast =
+      refusal([&] { vg::check_angular_velocity("w", Eigen::Vector3d(0, 0, 1001), slow); });
+  EXPECT_NE(fast.find("rk4"), std::string::npos) << fast;
+  for (double bad : {kNaN, kInf, -kInf}) {
+    const std::string m = refusal([&] {
+      vg::check_angular_velocity("angular_velocity", Eigen::Vector3d(0, bad, 0), kLimit);
+    });
+    EXPECT_TRUE(starts_with(m, "angular_velocity must be finite")) << m;
+  }
+}
+
+TEST(StateRequest, Frames) {
+  using F = vg::RequestFrame;
+  EXPECT_EQ(vg::request_frame("frame", "", "map", "puck"), F::world);
+  EXPECT_EQ(vg::request_frame("frame", "world", "map", "puck"), F::world);
+  EXPECT_EQ(vg::request_frame("frame", "map", "map", "puck"), F::world);
+  EXPECT_EQ(vg::request_frame("frame", "stone", "map", "puck"), F::body);
+  EXPECT_EQ(vg::request_frame("frame", "puck", "map", "puck"), F::body);
+  const std::string m = refusal([] { vg::request_frame("frame", "base_link", "world", "stone"); });
+  EXPECT_TRUE(starts_with(m, "frame: unknown frame 'base_link'")) << m;
+}
+
+TEST(StateRequest, StateFromRequestChecksEveryField) {
+  const Eigen::Vector3d p(0.1, 0.2, 0.3), v(1, 0, 0), w(0, 0, 10);
+  const Eigen::Vector4d q(0, 0, 0, 2);  // not unit: normalised
+  const vg::RigidBodyState s = vg::state_from_request(kFields, model(), p, q, v, w, kLimit);
+  EXPECT_EQ(s.position_world, p);
+  EXPECT_EQ(s.velocity_world, v);
+  EXPECT_DOUBLE_EQ(s.orientation.w(), 1.0);
+  EXPECT_NEAR(s.angular_momentum_world.z(), 2.0e-7 * 10, 1e-18);  // L = I3 w about the axis
+
+  const Eigen::Vector3d nan(kNaN, 0, 0);
+  EXPECT_TRUE(
+      starts_with(refusal([&] { vg::state_from_request(kFields, model(), nan, q, v, w, kLimit); }),
+                  "pose.position"));
+  EXPECT_TRUE(starts_with(refusal([&] {
+                            vg::state_from_request(kFields, model(), p, Eigen::Vector4d::Zero(), v,
+                                                   w, kLimit);
+                          }),
+                          "pose.orientation must be a non-zero quaternion"));
+  EXPECT_TRUE(starts_with(refusal([&] {
+                            vg::state_from_request(kFields, model(), p,
+                                                   Eigen::Vector4d(kInf, 0, 0, 1), v, w, kLimit);
+                          }),
+                          "pose.orientation must be finite"));
+  EXPECT_TRUE(starts_with(refusal([&] {
+                            vg::state_from_request(kFields, model(), p, q,
+                                                   Eigen::Vector3d(0, kInf, 0), w, kLimit);
+                          }),
+                          "twist.linear"));
+  EXPECT_TRUE(starts_with(refusal([&] {
+                            vg::state_from_request(kFields, model(), p, q, v,
+                                                   Eigen::Vector3d(0, 0, 101), kLimit);
+                          }),
+                          "twist.angular: |w|"));
+}

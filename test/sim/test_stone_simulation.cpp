@@ -1,0 +1,269 @@
+// StoneSimulation: the node's behaviour without ROS. Time is driven by hand with jitter,
+// jumps and repeated ticks; requests, events and auto reset are checked at exact grid times.
+#include "virtual_go/sim/stone_simulation.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "virtual_go/flight/exact_motion.h"
+#include "virtual_go/geometry/rotation.h"
+
+namespace vg = virtual_go;
+
+namespace {
+
+constexpr std::int64_t kStart = 1700000000123456789;  // a realistic wall-clock stamp, ns
+constexpr std::int64_t kMs = 1000000;
+
+vg::StoneConfig spinning_toss() {
+  vg::StoneConfig c;
+  c.initial_position = Eigen::Vector3d(0.0, 0.0, 0.02);
+  c.initial_orientation = Eigen::Vector4d(0.2588190, 0.0, 0.0, 0.9659258);
+  c.initial_velocity = Eigen::Vector3d(0.1, 0.0, 1.0);
+  c.initial_angular_velocity = Eigen::Vector3d(7.0, -3.0, 45.0);  // off axis: wobbles
+  return c;
+}
+
+double seconds_since(std::int64_t stamp_ns, std::int64_t origin_ns) {
+  return static_cast<double>(stamp_ns - origin_ns) * 1e-9;
+}
+
+}  // namespace
+
+TEST(StoneSimulation, StartsAtTheFirstValidTimeWithAStartEvent) {
+  vg::StoneSimulation sim(spinning_toss());
+  EXPECT_FALSE(sim.update(0).advanced);  // use_sim_time before /clock
+  const vg::UpdateResult r = sim.update(kStart);
+  EXPECT_TRUE(r.advanced);
+  EXPECT_EQ(r.stamp_ns, kStart);
+  EXPECT_EQ(sim.start_ns(), kStart);
+  ASSERT_EQ(r.events.size(), 1u);
+  EXPECT_EQ(r.events[0].reason, vg::EventReason::start);
+  EXPECT_EQ(r.events[0].segment, 0u);
+  EXPECT_EQ(r.events[0].stamp_ns, kStart);
+  EXPECT_TRUE(r.events[0].state == sim.initial_state());
+}
+
+TEST(StoneSimulation, ExactStateAtEveryStampMatchesTheClosedForm) {
+  vg::StoneSimulation sim(spinning_toss());
+  const vg::ExactMotion exact(sim.setup(), sim.initial_state());
+  sim.update(kStart);
+  std::int64_t last_stamp = kStart, now = kStart;
+  double worst = 0.0;
+  for (int tick = 0; tick < 3000; ++tick) {
+    now += 16 * kMs + (tick % 7) * 123457 - 300000;  // jittery ~60 Hz ticks
+    const vg::UpdateResult r = sim.update(now);
+    if (!r.advanced) continue;
+    EXPECT_GT(r.stamp_ns, last_stamp);
+    EXPECT_LE(r.stamp_ns, now);
+    EXPECT_EQ((r.stamp_ns - kStart) % sim.dt_ns(), 0);
+    last_stamp = r.stamp_ns;
+    const vg::RigidBodyState ref = exact.state_at(seconds_since(r.stamp_ns, kStart));
+    worst = std::max(worst, vg::orientation_error(ref.orientation, sim.state().orientation));
+    EXPECT_NEAR((ref.position_world - sim.state().position_world).norm(), 0.0, 1e-9);
+  }
+  EXPECT_LT(worst, 1e-10);
+  EXPECT_GT(seconds_since(last_stamp, kStart), 45.0);
+}
+
+TEST(StoneSimulation, RepeatedTickTimePublishesNothing) {
+  vg::StoneSimulation sim(spinning_toss());
+  sim.update(kStart);
+  EXPECT_TRUE(sim.update(kStart + 20 * kMs).advanced);
+  EXPECT_FALSE(sim.update(kStart + 20 * kMs).advanced);
+  EXPECT_FALSE(sim.update(kStart + 20 * kMs + kMs / 2).advanced);
+}
+
+TEST(StoneSimulation, RequestsTakeEffectAtTheNextGridTime) {
+  vg::StoneSimulation sim(spinning_toss());
+  sim.update(kStart);
+  sim.update(kStart + 100 * kMs);
+  const vg::RigidBodyState before = sim.state();
+
+  sim.set_state(Eigen::Vector3d(1, 2, 3), Eigen::Vector4d(0, 0, 1, 0), Eigen::Vector3d(0, 0, 0),
+                Eigen::Vector3d(0, 0, 5));
+  EXPECT_TRUE(sim.state() == before);  // nothing changes before the next step
+  vg::UpdateResult r = sim.update(kStart + 100 * kMs + 1 * kMs);
+  ASSERT_EQ(r.events.size(), 1u);
+  EXPECT_EQ(r.events[0].reason, vg::EventReason::set_state);
+  EXPECT_EQ(r.events[0].segment, 1u);
+  EXPECT_EQ(r.events[0].stamp_ns, kStart + 101 * kMs);
+  EXPECT_EQ(r.events[0].state.position_world, Eigen::Vector3d(1, 2, 3));
+  EXPECT_TRUE(sim.state() == r.events[0].state);
+
+  sim.reset();
+  r = sim.update(kStart + 110 * kMs);
+  ASSERT_EQ(r.events.size(), 1u);
+  EXPECT_EQ(r.events[0].reason, vg::EventReason::reset);
+  EXPECT_EQ(r.events[0].stamp_ns, kStart + 102 * kMs);
+  EXPECT_TRUE(r.events[0].state == sim.initial_state());
+  // After the reset the motion is the initial motion again, from the event's time.
+  const vg::ExactMotion exact(sim.setup(), sim.initial_state());
+  EXPECT_LT(vg::orientation_error(exact.state_at(0.008).orientation, sim.state().orientation),
+            1e-12);
+}
+
+TEST(StoneSimulation, ChangesAtOneStepMakeOneEvent) {
+  vg::StoneSimulation sim(spinning_toss());
+  sim.update(kStart);
+  sim.update(kStart + 10 * kMs);
+  // Applied in order: the set_state is overwritten by the reset, then the stone spun up.
+  sim.set_state(Eigen::Vector3d(1, 2, 3), Eigen::Vector4d(0, 0, 1, 0), Eigen::Vector3d(0, 0, 0),
+                Eigen::Vector3d(0, 0, 5));
+  sim.reset();
+  sim.set_angular_velocity(Eigen::Vector3d(0, 0, 30), "world");
+  vg::UpdateResult r = sim.update(kStart + 13 * kMs);
+  ASSERT_EQ(r.events.size(), 1u);
+  EXPECT_EQ(r.events[0].reason, vg::EventReason::set_angular_velocity);  // the last change
+  EXPECT_EQ(r.events[0].segment, 1u);
+  EXPECT_EQ(r.events[0].stamp_ns, kStart + 11 * kMs);
+  EXPECT_EQ(r.events[0].state.position_world, sim.initial_state().position_world);
+  EXPECT_TRUE(r.events[0].state.orientation.coeffs() == sim.initial_state().orientation.coeffs());
+  EXPECT_LT((vg::RigidBody(sim.setup().model, r.events[0].state).angular_velocity_world() -
+             Eigen::Vector3d(0, 0, 30))
+                .norm(),
+            1e-12);
+
+  // A change due at the step of an auto reset joins its event too.
+  vg::StoneConfig c = spinning_toss();
+  c.auto_reset_period = 0.05;
+  vg::StoneSimulation auto_sim(c);
+  auto_sim.update(kStart);
+  auto_sim.update(kStart + 49 * kMs);
+  auto_sim.reset();
+  r = auto_sim.update(kStart + 50 * kMs);
+  ASSERT_EQ(r.events.size(), 1u);
+  EXPECT_EQ(r.events[0].reason, vg::EventReason::reset);
+  EXPECT_EQ(r.events[0].segment, 1u);
+  EXPECT_EQ(r.events[0].stamp_ns, kStart + 50 * kMs);
+}
+
+TEST(StoneSimulation, AngularVelocityInTheStoneFrame) {
+  vg::StoneSimulation sim(spinning_toss());
+  sim.update(kStart);
+  sim.set_angular_velocity(Eigen::Vector3d(0, 0, 30), "stone");
+  const vg::UpdateResult r = sim.update(kStart + kMs);
+  ASSERT_EQ(r.events.size(), 1u);
+  EXPECT_EQ(r.events[0].reason, vg::EventReason::set_angular_velocity);
+  // Spin about the symmetry axis: w_world = R e_z * 30, and position kept from the step.
+  const vg::RigidBody body = sim.body();
+  const Eigen::Vector3d axis = sim.state().orientation * Eigen::Vector3d::UnitZ();
+  EXPECT_LT((body.angular_velocity_world() - 30.0 * axis).norm(), 1e-9);
+  EXPECT_NEAR(sim.state().position_world.z(), 0.02 + 1.0 * 0.001 - 0.5 * 9.80665 * 1e-6, 1e-15);
+}
+
+TEST(StoneSimulation, BadRequestsChangeNothing) {
+  vg::StoneSimulation sim(spinning_toss());
+  sim.update(kStart);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(sim.set_angular_velocity(Eigen::Vector3d(nan, 0, 0), ""), vg::InvalidArgument);
+  EXPECT_THROW(sim.set_angular_velocity(Eigen::Vector3d(0, 0, 501), "world"), vg::InvalidArgument);
+  EXPECT_THROW(sim.set_angular_velocity(Eigen::Vector3d(0, 0, 1), "map"), vg::InvalidArgument);
+  EXPECT_THROW(sim.set_state(Eigen::Vector3d::Zero(), Eigen::Vector4d::Zero(),
+                             Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()),
+               vg::InvalidArgument);
+  const vg::UpdateResult r = sim.update(kStart + 50 * kMs);
+  EXPECT_TRUE(r.events.empty());
+  const vg::ExactMotion exact(sim.setup(), sim.initial_state());
+  EXPECT_LT(vg::orientation_error(exact.state_at(0.05).orientation, sim.state().orientation),
+            1e-12);
+}
+
+TEST(StoneSimulation, AutoResetRestartsTheSegmentOnTime) {
+  vg::StoneConfig c = spinning_toss();
+  c.auto_reset_period = 0.05;
+  vg::StoneSimulation sim(c);
+  sim.update(kStart);
+  vg::UpdateResult r = sim.update(kStart + 120 * kMs);
+  ASSERT_EQ(r.events.size(), 2u);
+  EXPECT_EQ(r.events[0].reason, vg::EventReason::auto_reset);
+  EXPECT_EQ(r.events[0].stamp_ns, kStart + 50 * kMs);
+  EXPECT_EQ(r.events[1].stamp_ns, kStart + 100 * kMs);
+  EXPECT_EQ(r.events[1].segment, 2u);
+  EXPECT_TRUE(r.events[1].state == sim.initial_state());
+}
+
+TEST(StoneSimulation, TimeJumpsStartANewSegmentAtTheNewTime) {
+  vg::StoneSimulation sim(spinning_toss());
+  sim.update(kStart);
+  sim.update(kStart + 500 * kMs);
+  const vg::RigidBodyState before = sim.state();
+  // A looping bag: ROS time goes back. The state continues, stamped on the new time line.
+  vg::UpdateResult r = sim.update(kStart + 100 * kMs);
+  EXPECT_TRUE(r.advanced);
+  EXPECT_EQ(r.stamp_ns, kStart + 100 * kMs);
+  ASSERT_EQ(r.events.size(), 1u);
+  EXPECT_EQ(r.events[0].reason, vg::EventReason::time_jump);
+  EXPECT_TRUE(r.events[0].state == before);
+  r = sim.update(kStart + 117 * kMs + 5);
+  EXPECT_EQ(r.stamp_ns, kStart + 117 * kMs);
+  // Far ahead (a paused process, a bag skipped forward): skip instead of catching up.
+  r = sim.update(kStart + 60000 * kMs);
+  ASSERT_EQ(r.events.size(), 1u);
+  EXPECT_EQ(r.events[0].reason, vg::EventReason::time_jump);
+  EXPECT_EQ(r.stamp_ns, kStart + 60000 * kMs);
+}
+
+TEST(StoneSimulation, IntegrationFailureHoldsTheStateAndResetRecovers) {
+  vg::StoneConfig c;
+  c.initial_position = Eigen::Vector3d(1.79e308, 0, 0);
+  c.initial_velocity = Eigen::Vector3d(1.7e308, 0, 0);  // overflows within a few steps
+  vg::StoneSimulation sim(c);
+  sim.update(kStart);
+  const vg::UpdateResult r = sim.update(kStart + 100 * kMs);
+  EXPECT_FALSE(r.error.empty());
+  EXPECT_TRUE(sim.state().position_world.allFinite());
+  EXPECT_LT(r.stamp_ns, kStart + 100 * kMs);
+  EXPECT_FALSE(sim.update(kStart + 101 * kMs).advanced);
+  sim.set_state(Eigen::Vector3d::Zero(), Eigen::Vector4d(0, 0, 0, 1), Eigen::Vector3d::Zero(),
+                Eigen::Vector3d::Zero());
+  const vg::UpdateResult after = sim.update(kStart + 200 * kMs);
+  EXPECT_TRUE(after.error.empty());
+  EXPECT_TRUE(after.advanced);
+}
+
+TEST(StoneSimulation, PersistentIntegrationFailurePublishesNothingUntilRecovered) {
+  vg::StoneConfig c;
+  c.initial_position = Eigen::Vector3d(1.79e308, 0, 0);
+  c.initial_velocity = Eigen::Vector3d(1.7e308, 0, 0);
+  vg::StoneSimulation sim(c);
+  sim.update(kStart);
+  EXPECT_FALSE(sim.update(kStart + 100 * kMs).error.empty());
+  const vg::RigidBodyState held = sim.state();
+  // Long enough for the stopped clock to fall more than its max lag (1 s) behind: the time
+  // jump must not re-stamp the held state as a new one.
+  std::int64_t now = kStart + 100 * kMs;
+  for (int tick = 0; tick < 200; ++tick) {
+    now += 16 * kMs;
+    const vg::UpdateResult r = sim.update(now);
+    EXPECT_FALSE(r.advanced) << "tick " << tick;
+    EXPECT_TRUE(r.events.empty()) << "tick " << tick;
+  }
+  EXPECT_TRUE(sim.state() == held);
+
+  sim.set_state(Eigen::Vector3d::Zero(), Eigen::Vector4d(0, 0, 0, 1), Eigen::Vector3d::Zero(),
+                Eigen::Vector3d::Zero());
+  const vg::UpdateResult after = sim.update(now + 16 * kMs);
+  EXPECT_TRUE(after.error.empty());
+  EXPECT_TRUE(after.advanced);
+  ASSERT_EQ(after.events.size(), 1u);
+  EXPECT_EQ(after.events[0].reason, vg::EventReason::set_state);
+  EXPECT_GT(after.events[0].stamp_ns, now - 1000 * kMs);  // on the current time line
+  EXPECT_LE(after.stamp_ns, now + 16 * kMs);
+}
+
+TEST(StoneSimulation, InvalidInitialStateNamesTheParameter) {
+  vg::StoneConfig c;
+  c.initial_orientation = Eigen::Vector4d::Zero();
+  try {
+    vg::StoneSimulation sim(c);
+    ADD_FAILURE() << "zero quaternion accepted";
+  } catch (const vg::ConfigError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("~initial/orientation", 0), 0u) << e.what();
+  }
+  c = vg::StoneConfig();
+  c.initial_angular_velocity = Eigen::Vector3d(0, 0, 600);
+  EXPECT_THROW(vg::StoneSimulation{c}, vg::ConfigError);
+}
