@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "virtual_go/flight/integrator.h"
+#include "virtual_go/flight/integrator_registry.h"
 #include "virtual_go/body/rigid_body_state.h"
 
 namespace vg_bench {

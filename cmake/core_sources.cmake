@@ -2,6 +2,7 @@
 # The one list of what the core is: CMakeLists.txt builds the library from it and
 # benchmark/CMakeLists.txt compiles the same files with its own flags.
 set(VG_CORE_SOURCES
+  src/common/formatting.cpp
   src/common/validation.cpp
   src/geometry/rotation.cpp
   src/geometry/lens_shape.cpp
@@ -11,9 +12,12 @@ set(VG_CORE_SOURCES
   src/body/motion_model.cpp
   src/body/rigid_body.cpp
   src/flight/integrator.cpp
+  src/flight/integrator_registry.cpp
   src/flight/euler_integrator.cpp
   src/flight/rk4_integrator.cpp
   src/flight/splitting_integrator.cpp
   src/flight/exact_integrator.cpp
   src/flight/exact_motion.cpp
+  src/go/stone_sizes.cpp
+  src/go/stone_materials.cpp
   src/go/stone.cpp)

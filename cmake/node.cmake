@@ -5,6 +5,7 @@ include_directories(${catkin_INCLUDE_DIRS})
 add_library(virtual_go_sim
   src/sim/sim_clock.cpp
   src/sim/stone_config.cpp
+  src/sim/stone_parameters.cpp
   src/sim/state_request.cpp
   src/sim/segment_event.cpp
   src/sim/stone_simulation.cpp)

@@ -3,10 +3,13 @@
 #include <cstring>
 #include <exception>
 #include <string>
+#include <vector>
 
-#include "virtual_go/flight/exact_motion.h"
-#include "virtual_go/flight/integrator.h"
 #include "virtual_go/body/rigid_body.h"
+#include "virtual_go/common/formatting.h"
+#include "virtual_go/flight/exact_motion.h"
+#include "virtual_go/flight/flight_cache.h"
+#include "virtual_go/flight/integrator_registry.h"
 #include "virtual_go/geometry/rotation.h"
 #include "virtual_go/go/stone.h"
 
@@ -14,23 +17,32 @@ namespace vg = virtual_go;
 
 namespace {
 
+const char* const kDefaultIntegrator = "exact";
+const char* const kDefaultModel = "rigid_body";
+
+// The choices come from the tables that define them (sizes, materials, integrators, models).
 void print_usage() {
+  const std::vector<int> sizes = vg::size_numbers();
   std::printf(
       "usage: stone_demo [--size N] [--material NAME] [--integrator NAME] [--model NAME]\n"
-      "Prints the mass properties of a Go stone (a biconvex lens, width 22 mm) and a 1 s\n"
+      "Prints the mass properties of a Go stone (a biconvex lens, width %.0f mm) and a 1 s\n"
       "trajectory of it tossed upwards while tumbling, with the error against the closed form.\n"
-      "  --size N          Japanese size number 22..40 (default 33)\n"
-      "  --material NAME   slate, shell, glass or yunzi (default slate)\n"
-      "  --integrator NAME euler, rk4, splitting or exact (default exact)\n"
-      "  --model NAME      constant_omega or rigid_body (default rigid_body)\n");
+      "  --size N          Japanese size number %d..%d (default %d)\n"
+      "  --material NAME   %s (default %s)\n"
+      "  --integrator NAME %s (default %s)\n"
+      "  --model NAME      %s (default %s)\n",
+      vg::kDefaultStoneWidth * 1e3, sizes.front(), sizes.back(), vg::kDefaultSizeNumber,
+      vg::join(vg::material_names(), ", ").c_str(), vg::StoneSpec{}.material.c_str(),
+      vg::join(vg::integrator_names(), ", ").c_str(), kDefaultIntegrator,
+      vg::join(vg::motion_models().names(), ", ").c_str(), kDefaultModel);
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
   vg::StoneSpec spec;
-  spec.size_number = 33;
-  std::string integrator_name = "exact", model_name = "rigid_body";
+  spec.size_number = vg::kDefaultSizeNumber;
+  std::string integrator_name = kDefaultIntegrator, model_name = kDefaultModel;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg == "-h" || arg == "--help") {
@@ -82,23 +94,24 @@ int main(int argc, char** argv) {
     state.orientation = Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitX()));
     state = vg::with_angular_velocity_world(setup.model, state, Eigen::Vector3d(20, 5, 40));
 
-    auto integrator = vg::make_integrator(integrator_name, setup);
+    const auto integrator = vg::make_integrator(integrator_name, setup);
+    vg::FlightCache cache;  // the stone's: the exact integrator continues its closed form
     const vg::ExactMotion exact(setup, state);
-    const double dt = 1.0 / 600.0;
+    const double dt_s = 1.0 / 600.0;
     std::printf("\nTrajectory (%s model, %s integrator, dt %.5f s; error vs closed form)\n",
-                model_name.c_str(), integrator_name.c_str(), dt);
+                model_name.c_str(), integrator_name.c_str(), dt_s);
     std::printf("%6s %9s %9s %9s   %8s %8s %8s %8s   %10s %9s\n", "t [s]", "x [m]", "y [m]",
                 "z [m]", "qw", "qx", "qy", "qz", "|w| rad/s", "err [rad]");
     for (int n = 0; n <= 600; ++n) {
       if (n % 60 == 0) {
         const vg::RigidBody body(setup.model, state);
         const auto& q = state.orientation;
-        std::printf("%6.3f %9.5f %9.5f %9.5f   %8.5f %8.5f %8.5f %8.5f   %10.4f %9.2e\n", n * dt,
+        std::printf("%6.3f %9.5f %9.5f %9.5f   %8.5f %8.5f %8.5f %8.5f   %10.4f %9.2e\n", n * dt_s,
                     state.position_world.x(), state.position_world.y(), state.position_world.z(),
                     q.w(), q.x(), q.y(), q.z(), body.angular_velocity_world().norm(),
-                    vg::orientation_error(exact.state_at(n * dt).orientation, q));
+                    vg::orientation_error(exact.state_at(n * dt_s).orientation, q));
       }
-      if (n < 600) integrator->advance(state, dt);
+      if (n < 600) integrator->advance(state, dt_s, cache);
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "stone_demo: %s\n", e.what());

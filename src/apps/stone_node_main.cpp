@@ -6,11 +6,12 @@
 #include <exception>
 
 #include "virtual_go/ros/stone_node.h"
+#include "virtual_go/ros/stone_node_help.h"
 
 int main(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "-h") == 0 || std::strcmp(argv[i], "--help") == 0) {
-      std::fputs(virtual_go::stone_node_help(), stdout);
+      std::fputs(virtual_go::stone_node_help().c_str(), stdout);
       return 0;
     }
   }

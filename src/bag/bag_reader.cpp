@@ -16,6 +16,7 @@
 #include <sstream>
 
 #include "virtual_go/bag/bag_reader.h"
+#include "virtual_go/common/sim_time.h"
 
 namespace virtual_go {
 namespace bag {
@@ -62,7 +63,7 @@ bool header_stamp(const rosbag::MessageInstance& m, std::int64_t& stamp_ns) {
   std::uint32_t sec = 0, nsec = 0;  // ROS serializes little-endian, as the hosts it runs on
   std::memcpy(&sec, buffer.data() + 4, 4);
   std::memcpy(&nsec, buffer.data() + 8, 4);
-  stamp_ns = static_cast<std::int64_t>(sec) * 1000000000 + nsec;
+  stamp_ns = stamp_to_ns(sec, nsec);
   return true;
 }
 
@@ -188,13 +189,13 @@ class Reader {
     info.world_frame = msg->world_frame.empty() ? "world" : msg->world_frame;
     info.stone_frame = msg->stone_frame.empty() ? "stone" : msg->stone_frame;
     info.mass = msg->mass;
-    tf2::fromMsg(msg->principal_moments, info.principal_moments);
+    tf2::fromMsg(msg->principal_moments, info.principal_moments_body);
     info.model = msg->model;
     info.integrator = msg->integrator;
-    info.dt = msg->dt;
+    info.dt_s = msg->dt;
     info.dt_ns = msg->dt_ns;
-    info.rate = msg->rate;
-    tf2::fromMsg(msg->gravity, info.gravity);
+    info.rate_hz = msg->rate;
+    tf2::fromMsg(msg->gravity, info.gravity_world);
     out_.info = info;
   }
 

@@ -7,16 +7,12 @@
 #include "virtual_go/flight/exact_motion.h"
 #include "virtual_go/body/rigid_body.h"
 #include "virtual_go/geometry/rotation.h"
+#include "virtual_go/common/sim_time.h"
 #include "virtual_go/common/validation.h"
 
 namespace virtual_go {
 namespace bag {
 namespace {
-
-double seconds_between(std::int64_t from_ns, std::int64_t to_ns) {
-  // Subtract in integers first: absolute stamps in double lose nanoseconds.
-  return static_cast<double>(to_ns - from_ns) * 1e-9;
-}
 
 // Kinetic plus the magnitude of potential energy: a scale that stays non-zero for a stone
 // that starts at rest at the origin (where E0 itself is zero).
@@ -112,18 +108,18 @@ RigidBodyState state_from_event(const SegmentEvent& event) {
 
 MotionModel model_from_info(const RecordingInfo& info) {
   require_positive("info mass", info.mass);
-  require_positive("info principal_moments.x", info.principal_moments.x());
-  require_positive("info principal_moments.y", info.principal_moments.y());
-  require_positive("info principal_moments.z", info.principal_moments.z());
-  require_finite("info gravity", info.gravity);
+  require_positive("info principal_moments.x", info.principal_moments_body.x());
+  require_positive("info principal_moments.y", info.principal_moments_body.y());
+  require_positive("info principal_moments.z", info.principal_moments_body.z());
+  require_finite("info gravity", info.gravity_world);
   return MotionModel(motion_model_from_name(info.model),
-                     MassProperties(info.mass, info.principal_moments));
+                     MassProperties(info.mass, info.principal_moments_body));
 }
 
 PhysicsResult check_physics(const RecordingInfo& info, const std::vector<OdomSample>& odom,
                             const std::vector<SegmentEvent>& events) {
   const MotionModel model = model_from_info(info);
-  const MotionSetup setup{model, info.gravity};
+  const MotionSetup setup{model, info.gravity_world};
   const double nan = std::numeric_limits<double>::quiet_NaN();
 
   PhysicsResult result;
@@ -169,8 +165,8 @@ PhysicsResult check_physics(const RecordingInfo& info, const std::vector<OdomSam
     Eigen::Vector3d l0 = Eigen::Vector3d::Zero();
     if (start) {
       const RigidBody body(model, *start);
-      e0 = body.total_energy(info.gravity);
-      scale = energy_scale(body, info.gravity);
+      e0 = body.total_energy(info.gravity_world);
+      scale = energy_scale(body, info.gravity_world);
       l0 = start->angular_momentum_world;
     }
     std::vector<RigidBodyState> states;
@@ -189,7 +185,7 @@ PhysicsResult check_physics(const RecordingInfo& info, const std::vector<OdomSam
         continue;
       }
       const RigidBody body(model, states.back());
-      scale = std::max(scale, energy_scale(body, info.gravity));
+      scale = std::max(scale, energy_scale(body, info.gravity_world));
       if (l0_zero) l_scale = std::max(l_scale, states.back().angular_momentum_world.norm());
     }
 
@@ -209,7 +205,7 @@ PhysicsResult check_physics(const RecordingInfo& info, const std::vector<OdomSam
         p.angular_speed = body.angular_velocity_world().norm();
         if (start) {
           p.energy_drift =
-              scale > 0.0 ? std::abs(body.total_energy(info.gravity) - e0) / scale : 0.0;
+              scale > 0.0 ? std::abs(body.total_energy(info.gravity_world) - e0) / scale : 0.0;
           p.momentum_drift = l_scale > 0.0 ? (s.angular_momentum_world - l0).norm() / l_scale : 0.0;
         } else {
           p.energy_drift = p.momentum_drift = nan;

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "virtual_go/bag/report.h"
+#include "virtual_go/common/sim_time.h"
 #include "virtual_go/common/validation.h"
 
 namespace virtual_go {
@@ -27,7 +28,7 @@ std::string sci(double v) {
   return out.str();
 }
 
-std::string stamp_text(std::int64_t ns) { return fixed(static_cast<double>(ns) * 1e-9, 6); }
+std::string stamp_text(std::int64_t ns) { return fixed(to_seconds(ns), 6); }
 
 std::string vector_text(const Eigen::Vector3d& v) {
   std::ostringstream out;
@@ -41,7 +42,7 @@ void print_stamp_events(std::ostream& out, const std::string& topic, const char*
   constexpr std::size_t kShown = 5;
   for (std::size_t i = 0; i < events.size() && i < kShown; ++i) {
     out << "  " << what << " " << topic << " at " << stamp_text(events[i].stamp_ns) << " s (step "
-        << fixed(static_cast<double>(events[i].step_ns) * 1e-6, 3) << " ms, message "
+        << fixed(to_seconds(events[i].step_ns) * 1e3, 3) << " ms, message "
         << events[i].index << ")\n";
   }
   if (events.size() > kShown) {
@@ -108,8 +109,9 @@ void print_report(std::ostream& out, const Report& report) {
   if (rec.info) {
     const RecordingInfo& i = *rec.info;
     out << "\nstone (" << i.topic << "): model " << i.model << ", integrator " << i.integrator
-        << ", dt " << i.dt << " s, rate " << i.rate << " Hz, mass " << i.mass << " kg, moments "
-        << vector_text(i.principal_moments) << " kg m^2, gravity " << vector_text(i.gravity)
+        << ", dt " << i.dt_s << " s, rate " << i.rate_hz << " Hz, mass " << i.mass
+        << " kg, moments " << vector_text(i.principal_moments_body) << " kg m^2, gravity "
+        << vector_text(i.gravity_world)
         << " m/s^2\n";
   }
 
@@ -191,7 +193,7 @@ void write_csv(const std::string& path, const Report& report) {
     out << std::setprecision(12);
     for (const PhysicsSample& s : samples) {
       out << s.segment << "," << stamp_text(s.stamp_ns).substr(0) << ","
-          << fixed(static_cast<double>(s.stamp_ns - t0) * 1e-9, 9) << "," << fixed(s.t_s, 9) << ","
+          << fixed(seconds_between(t0, s.stamp_ns), 9) << "," << fixed(s.t_s, 9) << ","
           << s.quat_norm_error << "," << s.energy_drift << "," << s.momentum_drift << ","
           << s.orientation_error << "," << s.position_error << "," << s.angular_speed << "\n";
     }
@@ -237,8 +239,8 @@ void write_plot(const std::string& png_path, const Report& report, const std::st
   for (const SegmentResult& s : report.physics->segments) {
     if (arrow > 200) break;
     script << "set arrow " << arrow++ << " from "
-           << static_cast<double>(s.plan.start_ns - t0) * 1e-9 << ", graph 0 to "
-           << static_cast<double>(s.plan.start_ns - t0) * 1e-9
+           << seconds_between(t0, s.plan.start_ns) << ", graph 0 to "
+           << seconds_between(t0, s.plan.start_ns)
            << ", graph 1 nohead dashtype 2 linecolor rgb 'gray'\n";
   }
   script << "set title 'error against the exact closed form'\nset xlabel 'time (s)'\n"

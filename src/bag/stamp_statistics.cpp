@@ -2,6 +2,7 @@
 #include <cmath>
 
 #include "virtual_go/bag/stamp_statistics.h"
+#include "virtual_go/common/sim_time.h"
 
 namespace virtual_go {
 namespace bag {
@@ -25,7 +26,7 @@ StampStatistics compute_stamp_statistics(const std::vector<std::int64_t>& stamps
   for (std::size_t i = 1; i < stamps_ns.size(); ++i) {
     const std::int64_t step = stamps_ns[i] - stamps_ns[i - 1];
     if (step > 0) {
-      periods.push_back(static_cast<double>(step) * 1e-9);
+      periods.push_back(to_seconds(step));
     } else if (step == 0) {
       s.repeated.push_back({i, stamps_ns[i], step});
     } else {
@@ -33,7 +34,7 @@ StampStatistics compute_stamp_statistics(const std::vector<std::int64_t>& stamps
     }
   }
   const auto [lo, hi] = std::minmax_element(stamps_ns.begin(), stamps_ns.end());
-  s.span_s = static_cast<double>(*hi - *lo) * 1e-9;
+  s.span_s = seconds_between(*lo, *hi);
   if (s.span_s > 0.0) s.mean_rate_hz = static_cast<double>(s.count - 1) / s.span_s;
   s.period_p50_s = percentile(periods, 50.0);
   s.period_p99_s = percentile(periods, 99.0);
@@ -44,7 +45,7 @@ StampStatistics compute_stamp_statistics(const std::vector<std::int64_t>& stamps
     const double limit_s = kGapFactor * s.period_p50_s;
     for (std::size_t i = 1; i < stamps_ns.size(); ++i) {
       const std::int64_t step = stamps_ns[i] - stamps_ns[i - 1];
-      if (static_cast<double>(step) * 1e-9 > limit_s) s.gaps.push_back({i, stamps_ns[i], step});
+      if (to_seconds(step) > limit_s) s.gaps.push_back({i, stamps_ns[i], step});
     }
   }
   return s;

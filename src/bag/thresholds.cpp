@@ -4,8 +4,9 @@
 #include <sstream>
 
 #include "virtual_go/bag/thresholds.h"
-#include "virtual_go/flight/integrator.h"
+#include "virtual_go/common/sim_time.h"
 #include "virtual_go/common/validation.h"
+#include "virtual_go/flight/integrator_registry.h"
 
 namespace virtual_go {
 namespace bag {
@@ -18,34 +19,7 @@ std::string format_short(double v) {
   return out.str();
 }
 
-std::string known_integrators() {
-  std::string list;
-  for (const std::string& name : integrator_names()) list += (list.empty() ? "" : " ") + name;
-  return list;
-}
-
 }  // namespace
-
-const std::vector<IntegratorBound>& integrator_bounds() {
-  // The single source of these constants: --help prints them, README.md's table restates them
-  // (test_bag_analysis compares). K_q, K_E: about 4-10x the worst value measured for the
-  // default stone (see thresholds.h). K_g: the article's Euler (v += g h; x += v h) is off by
-  // exactly g h t / 2, with 1 % to spare.
-  static const std::vector<IntegratorBound> bounds{
-      {"euler", 1, 5.0, 0.5, 1.01},
-      {"rk4", 4, 0.1, 0.02, 0.0},
-      {"splitting", 2, 2.0, 0.02, 0.0},
-      {"exact", 0, 0.0, 0.0, 0.0},
-  };
-  return bounds;
-}
-
-const IntegratorBound* integrator_bound(const std::string& integrator) {
-  for (const IntegratorBound& b : integrator_bounds()) {
-    if (b.integrator == integrator) return &b;
-  }
-  return nullptr;
-}
 
 std::string default_limits_text() {
   std::ostringstream out;
@@ -60,44 +34,39 @@ std::string default_limits_text() {
       << "  " << std::left << std::setw(12) << "integrator" << std::setw(4) << "p" << std::setw(8)
       << "K_q" << std::setw(8) << "K_E"
       << "K_g\n";
-  for (const std::string& name : integrator_names()) {
-    out << "  " << std::left << std::setw(12) << name;
-    const IntegratorBound* b = integrator_bound(name);
-    if (b == nullptr) {
-      out << "no default: pass every --max-* option\n";
-      continue;
-    }
-    out << std::setw(4) << b->order << std::setw(8) << b->k_orientation << std::setw(8)
-        << b->k_energy << b->k_gravity << "\n";
+  for (const IntegratorInfo& i : integrators().entries()) {
+    const ErrorBoundConstants& k = i.error_bound;
+    out << "  " << std::left << std::setw(12) << i.name << std::setw(4) << i.order << std::setw(8)
+        << k.k_orientation << std::setw(8) << k.k_energy << k.k_gravity << "\n";
   }
   return out.str();
 }
 
-PhysicsBounds physics_bounds(const std::string& integrator, double dt, const SegmentResult& segment,
-                             double gravity_norm, const LimitOverrides& overrides) {
+PhysicsBounds physics_bounds(const std::string& integrator, double dt_s,
+                             const SegmentResult& segment, double gravity_norm,
+                             const LimitOverrides& overrides) {
   PhysicsBounds b;
   const bool all_overridden = overrides.orientation_error && overrides.position_error &&
                               overrides.energy_drift && overrides.momentum_drift;
-  const IntegratorBound* c = integrator_bound(integrator);
-  if (c == nullptr && !all_overridden) {
-    const std::vector<std::string> names = integrator_names();
-    const bool known = std::find(names.begin(), names.end(), integrator) != names.end();
-    throw InvalidArgument(
-        std::string(known ? "no error bound known for integrator '" : "unknown integrator '") +
-        integrator + "' in ~info (known: " + known_integrators() +
-        "); pass --max-orientation-error, --max-position-error, "
-        "--max-energy-drift and --max-momentum-drift");
+  const IntegratorInfo* info = find_integrator(integrator);
+  if (info == nullptr && !all_overridden) {
+    throw InvalidArgument("integrator", "unknown integrator '" + integrator +
+                                            "' in ~info (known: " + join(integrator_names(), " ") +
+                                            "); pass --max-orientation-error, "
+                                            "--max-position-error, --max-energy-drift and "
+                                            "--max-momentum-drift");
   }
+  const ErrorBoundConstants k = info ? info->error_bound : ErrorBoundConstants{};
   const double w = segment.max_angular_speed, t = segment.duration_s;
-  const double hw_p = c && c->order > 0 ? std::pow(dt * w, c->order) : 0.0;
-  b.orientation_error = kBoundFloor + (c ? c->k_orientation * hw_p * w * t : 0.0);
-  b.energy_drift = kBoundFloor + (c ? c->k_energy * hw_p * (1.0 + w * t) : 0.0);
+  const double hw_p = info && info->order > 0 ? std::pow(dt_s * w, info->order) : 0.0;
+  b.orientation_error = kBoundFloor + k.k_orientation * hw_p * w * t;
+  b.energy_drift = kBoundFloor + k.k_energy * hw_p * (1.0 + w * t);
   b.momentum_drift = kBoundFloor;
-  b.position_error = kBoundFloor + kPositionRoundOff * segment.max_abs_position;
-  if (c) b.position_error += c->k_gravity * 0.5 * gravity_norm * dt * t;
+  b.position_error = kBoundFloor + kPositionRoundOff * segment.max_abs_position +
+                     k.k_gravity * 0.5 * gravity_norm * dt_s * t;
   b.quat_norm_error = kBoundFloor;
-  b.basis = integrator + ", dt " + format_short(dt) + " s, |w| " + format_short(w) + " rad/s, T " +
-            format_short(t) + " s";
+  b.basis = integrator + ", dt " + format_short(dt_s) + " s, |w| " + format_short(w) +
+            " rad/s, T " + format_short(t) + " s";
 
   if (overrides.orientation_error) b.orientation_error = *overrides.orientation_error;
   if (overrides.position_error) b.position_error = *overrides.position_error;
@@ -127,10 +96,11 @@ std::vector<Check> run_checks(const Recording& recording, const std::vector<Stam
         "stamps must strictly increase");
     add("gaps > 2x period", topic.topic, static_cast<double>(s.gaps.size()),
         static_cast<double>(overrides.max_gaps), "--max-gaps");
-    if (topic.at_node_rate && recording.info && recording.info->rate > 0.0 && s.count > 1) {
-      add("mean rate deviation", topic.topic, std::abs(s.mean_rate_hz / recording.info->rate - 1.0),
-          overrides.rate_tolerance,
-          "relative to ~info rate " + format_short(recording.info->rate) + " Hz, --rate-tolerance");
+    if (topic.at_node_rate && recording.info && recording.info->rate_hz > 0.0 && s.count > 1) {
+      add("mean rate deviation", topic.topic,
+          std::abs(s.mean_rate_hz / recording.info->rate_hz - 1.0), overrides.rate_tolerance,
+          "relative to ~info rate " + format_short(recording.info->rate_hz) +
+              " Hz, --rate-tolerance");
     }
   }
 
@@ -141,7 +111,7 @@ std::vector<Check> run_checks(const Recording& recording, const std::vector<Stam
     std::string basis = "every value finite";
     if (v.count > 0) {
       std::ostringstream first;
-      first << std::fixed << std::setprecision(6) << static_cast<double>(v.first_stamp_ns) * 1e-9;
+      first << std::fixed << std::setprecision(6) << to_seconds(v.first_stamp_ns);
       basis = "first at " + first.str() + " s, " + v.first_field + "; no figures for them";
     }
     add("non-finite values", topic, static_cast<double>(v.count), 0.0, basis);
@@ -164,7 +134,7 @@ std::vector<Check> run_checks(const Recording& recording, const std::vector<Stam
     if (seg.samples == 0) continue;
     PhysicsBounds b;
     try {
-      b = physics_bounds(info.integrator, info.dt, seg, info.gravity.norm(), overrides);
+      b = physics_bounds(info.integrator, info.dt_s, seg, info.gravity_world.norm(), overrides);
     } catch (const InvalidArgument& e) {
       add("physics bound", "segment " + std::to_string(k), NAN, 0.0, e.what());
       return checks;

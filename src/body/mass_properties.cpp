@@ -14,7 +14,7 @@ MassProperties::MassProperties(double mass, const Eigen::Vector3d& principal_mom
   require_positive("principal moment Izz", principal_moments_body.z());
 }
 
-MassProperties MassProperties::of_lens(const StoneShape& shape, double density) {
+MassProperties MassProperties::of_lens(const LensShape& shape, double density) {
   require_positive("density", density);
   const double a = shape.half_width(), c = shape.half_height();
   const double a2 = a * a, c2 = c * c;
@@ -25,7 +25,7 @@ MassProperties MassProperties::of_lens(const StoneShape& shape, double density) 
   return MassProperties(mass, Eigen::Vector3d(i1, i1, i3));
 }
 
-MassProperties MassProperties::of_lens_with_mass(const StoneShape& shape, double mass) {
+MassProperties MassProperties::of_lens_with_mass(const LensShape& shape, double mass) {
   require_positive("mass", mass);
   return of_lens(shape, mass / shape.volume());
 }

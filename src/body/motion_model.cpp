@@ -4,14 +4,22 @@
 
 namespace virtual_go {
 
+const NameTable<MotionModelInfo>& motion_models() {
+  static const NameTable<MotionModelInfo> table(
+      "motion model", "motion model",
+      {{"constant_omega", MotionModelKind::constant_omega}, {"rigid_body", MotionModelKind::rigid_body}});
+  return table;
+}
+
 MotionModelKind motion_model_from_name(const std::string& name) {
-  if (name == "constant_omega") return MotionModelKind::constant_omega;
-  if (name == "rigid_body") return MotionModelKind::rigid_body;
-  throw InvalidArgument("unknown motion model '" + name + "' (known: constant_omega rigid_body)");
+  return motion_models().at(name).kind;
 }
 
 std::string motion_model_name(MotionModelKind kind) {
-  return kind == MotionModelKind::constant_omega ? "constant_omega" : "rigid_body";
+  for (const MotionModelInfo& m : motion_models().entries()) {
+    if (m.kind == kind) return m.name;
+  }
+  return "unknown";  // not reached: every kind has an entry
 }
 
 MotionModel::MotionModel(MotionModelKind kind, const MassProperties& mass_properties)

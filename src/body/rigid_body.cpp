@@ -73,8 +73,13 @@ RigidBodyState with_angular_velocity_world(const MotionModel& model, RigidBodySt
   require_finite("angular velocity", omega_world);
   state.angular_momentum_world = model.angular_momentum_world(state.orientation, omega_world);
   // A finite but absurd omega (or inertia) can overflow L; never hand back a non-finite state.
-  require_finite("angular momentum from angular velocity " + format_vector(omega_world),
-                 state.angular_momentum_world);
+  // The input to blame is the angular velocity.
+  if (!state.angular_momentum_world.allFinite()) {
+    throw InvalidArgument("angular velocity", "angular momentum from angular velocity " +
+                                                  format_vector(omega_world) +
+                                                  " must be finite, got " +
+                                                  format_vector(state.angular_momentum_world));
+  }
   return state;
 }
 

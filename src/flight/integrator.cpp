@@ -3,12 +3,10 @@
 #include <cmath>
 #include <limits>
 
-#include "virtual_go/flight/euler_integrator.h"
-#include "virtual_go/flight/exact_integrator.h"
-#include "virtual_go/flight/free_flight.h"
-#include "virtual_go/flight/rk4_integrator.h"
-#include "virtual_go/flight/splitting_integrator.h"
 #include "virtual_go/common/validation.h"
+#include "virtual_go/flight/flight_cache.h"
+#include "virtual_go/flight/free_flight.h"
+#include "virtual_go/flight/integrator_registry.h"
 
 namespace virtual_go {
 namespace {
@@ -23,15 +21,17 @@ bool all_finite(const RigidBodyState& s) {
 
 }  // namespace
 
-Integrator::Integrator(const MotionSetup& setup)
-    : setup_(setup), has_gravity_(!setup.gravity_world.isZero(0.0)) {
+Integrator::Integrator(const IntegratorInfo& info, const MotionSetup& setup)
+    : info_(&info), setup_(setup), has_gravity_(!setup.gravity_world.isZero(0.0)) {
   require_finite("gravity", setup.gravity_world);
 }
 
-double Integrator::max_rotation_per_step() const { return std::numeric_limits<double>::infinity(); }
+const std::string& Integrator::name() const { return info_->name; }
 
-void Integrator::advance(RigidBodyState& state, double dt) {
-  if (!(dt > 0.0 && dt <= std::numeric_limits<double>::max())) require_positive("dt", dt);
+double Integrator::max_rotation_per_step() const { return info_->max_rotation_per_step; }
+
+void Integrator::advance(RigidBodyState& state, double dt_s, FlightCache& cache) const {
+  if (!(dt_s > 0.0 && dt_s <= std::numeric_limits<double>::max())) require_positive("dt", dt_s);
   // Check the input before stepping: a zero quaternion would otherwise pass through a step
   // unchanged (normalising zero leaves zero) and come out finite, and a huge one (|q| ~ 1e300)
   // overflows Eigen's normalize() into zero. The cheap test runs every step; validated() only
@@ -39,30 +39,32 @@ void Integrator::advance(RigidBodyState& state, double dt) {
   RigidBodyState next = state;
   if (!all_finite(state) || !(std::abs(state.orientation.coeffs().squaredNorm() - 1.0) <= 1e-12)) {
     next = state.validated();
+    // Every step's output is unit: a state that needed normalising was not one, so whatever
+    // the cache holds for this body cannot continue it.
+    cache.invalidate();
   }
-  step(next, dt);
+  try {
+    step(next, dt_s, cache);
+  } catch (...) {
+    cache.invalidate();  // the cache may have moved on; the state has not
+    throw;
+  }
   if (!all_finite(next)) {
+    cache.invalidate();
     state.validated();  // names the bad input field, if the input was the cause
-    throw IntegrationError(name() + ": step of dt " + format_value(dt) +
+    throw IntegrationError(name() + ": step of dt " + format_value(dt_s) +
                            " s produced a non-finite state");
   }
   state = next;
 }
 
-void Integrator::translate_exact(RigidBodyState& state, double dt) const {
-  free_flight(state, setup_.gravity_world, has_gravity_, dt, state);
+void Integrator::advance(RigidBodyState& state, double dt_s) const {
+  FlightCache fresh;
+  advance(state, dt_s, fresh);
 }
 
-std::unique_ptr<Integrator> make_integrator(const std::string& name, const MotionSetup& setup) {
-  if (name == "euler") return std::make_unique<EulerIntegrator>(setup);
-  if (name == "rk4") return std::make_unique<Rk4Integrator>(setup);
-  if (name == "splitting") return std::make_unique<SplittingIntegrator>(setup);
-  if (name == "exact") return std::make_unique<ExactIntegrator>(setup);
-  std::string known;
-  for (const std::string& n : integrator_names()) known += " " + n;
-  throw InvalidArgument("unknown integrator '" + name + "' (known:" + known + ")");
+void Integrator::translate_exact(RigidBodyState& state, double dt_s) const {
+  free_flight(state, setup_.gravity_world, has_gravity_, dt_s, state);
 }
-
-std::vector<std::string> integrator_names() { return {"euler", "rk4", "splitting", "exact"}; }
 
 }  // namespace virtual_go

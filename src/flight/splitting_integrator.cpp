@@ -25,14 +25,14 @@ void axis_flow(int axis, double tau, double moment, Eigen::Vector3d& m_body,
 
 }  // namespace
 
-void SplittingIntegrator::step(RigidBodyState& state, double dt) {
-  translate_exact(state, dt);
+void SplittingIntegrator::step(RigidBodyState& state, double dt_s, FlightCache&) const {
+  translate_exact(state, dt_s);
   if (state.angular_momentum_world.isZero(0.0)) return;
 
   const MotionModel& model = setup().model;
   if (model.kind() == MotionModelKind::constant_omega) {
     // Constant world omega: one exact rotation.
-    state.orientation = rotation_exp(dt * model.angular_velocity_world(
+    state.orientation = rotation_exp(dt_s * model.angular_velocity_world(
                                               state.orientation, state.angular_momentum_world)) *
                         state.orientation;
     state.orientation.normalize();
@@ -42,11 +42,11 @@ void SplittingIntegrator::step(RigidBodyState& state, double dt) {
   const Eigen::Vector3d& inertia = model.mass_properties().principal_moments_body();
   Eigen::Vector3d m_body = state.orientation.conjugate() * state.angular_momentum_world;
   Eigen::Quaterniond q = state.orientation;
-  axis_flow(0, 0.5 * dt, inertia[0], m_body, q);
-  axis_flow(1, 0.5 * dt, inertia[1], m_body, q);
-  axis_flow(2, dt, inertia[2], m_body, q);
-  axis_flow(1, 0.5 * dt, inertia[1], m_body, q);
-  axis_flow(0, 0.5 * dt, inertia[0], m_body, q);
+  axis_flow(0, 0.5 * dt_s, inertia[0], m_body, q);
+  axis_flow(1, 0.5 * dt_s, inertia[1], m_body, q);
+  axis_flow(2, dt_s, inertia[2], m_body, q);
+  axis_flow(1, 0.5 * dt_s, inertia[1], m_body, q);
+  axis_flow(0, 0.5 * dt_s, inertia[0], m_body, q);
   q.normalize();
   state.orientation = q;
 }

@@ -15,12 +15,13 @@ double TriangleMesh::enclosed_volume() const {
   return six_volume / 6.0;
 }
 
-TriangleMesh tessellate_lens(const StoneShape& shape, int segments, int rings) {
+TriangleMesh tessellate_lens(const LensShape& shape, int segments, int rings) {
   if (segments < 3) {
-    throw InvalidArgument("tessellation segments must be >= 3, got " + std::to_string(segments));
+    throw InvalidArgument("segments",
+                          "tessellation segments must be >= 3, got " + std::to_string(segments));
   }
   if (rings < 1) {
-    throw InvalidArgument("tessellation rings must be >= 1, got " + std::to_string(rings));
+    throw InvalidArgument("rings", "tessellation rings must be >= 1, got " + std::to_string(rings));
   }
   const double r = shape.sphere_radius(), d = shape.sphere_center_offset();
   const double alpha_max = std::asin(shape.half_width() / r);  // polar angle of the rim

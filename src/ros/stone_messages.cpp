@@ -95,14 +95,14 @@ StoneInfo to_info_msg(const StoneSimulation& sim) {
   msg.model = motion_model_name(sim.setup().model.kind());
   msg.integrator = sim.integrator().name();
   msg.dt_ns = sim.dt_ns();
-  msg.dt = static_cast<double>(sim.dt_ns()) * 1e-9;
-  msg.rate = c.rate;
+  msg.dt = sim.dt_s();
+  msg.rate = c.rate_hz;
   msg.gravity = to_vector_msg(sim.setup().gravity_world);
   const RigidBody initial(sim.setup().model, sim.initial_state());
   msg.initial_pose = to_pose_msg(initial.state());
   msg.initial_twist = to_world_twist_msg(initial);
   msg.max_angular_velocity = c.max_angular_velocity;
-  msg.auto_reset_period = c.auto_reset_period;
+  msg.auto_reset_period = c.auto_reset_period_s;
   return msg;
 }
 

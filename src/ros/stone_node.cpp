@@ -2,6 +2,7 @@
 
 #include <tf2_eigen/tf2_eigen.h>
 
+#include "virtual_go/common/sim_time.h"
 #include "virtual_go/ros/param_reader.h"
 #include "virtual_go/ros/stone_messages.h"
 
@@ -50,11 +51,11 @@ StoneConfig read_config(const ros::NodeHandle& private_nh) {
 StoneNode::StoneNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh)
     : nh_(nh), private_nh_(private_nh), sim_(read_config(private_nh)) {
   const StoneConfig& c = sim_.config();
-  if (c.rate * c.dt > 1.0) {
+  if (c.rate_hz * c.dt_s > 1.0) {
     ROS_WARN(
         "~rate %g Hz is faster than the physics step ~dt %g s: ticks without a new step "
         "publish nothing",
-        c.rate, c.dt);
+        c.rate_hz, c.dt_s);
   }
   pose_pub_ = private_nh_.advertise<geometry_msgs::PoseStamped>("pose", 10);
   odom_pub_ = private_nh_.advertise<nav_msgs::Odometry>("odom", 10);
@@ -71,9 +72,9 @@ StoneNode::StoneNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_n
   set_state_srv_ = private_nh_.advertiseService("set_state", &StoneNode::on_set_state, this);
 
   // On ROS time, so use_sim_time and /clock drive it too.
-  timer_ = nh_.createTimer(ros::Duration(1.0 / c.rate), &StoneNode::on_timer, this);
+  timer_ = nh_.createTimer(ros::Duration(1.0 / c.rate_hz), &StoneNode::on_timer, this);
   ROS_INFO("stone_node: %s model, %s integrator, dt %lld ns, %g Hz, frames %s -> %s",
-           c.model.c_str(), c.integrator.c_str(), static_cast<long long>(sim_.dt_ns()), c.rate,
+           c.model.c_str(), c.integrator.c_str(), static_cast<long long>(sim_.dt_ns()), c.rate_hz,
            c.world_frame.c_str(), c.stone_frame.c_str());
 }
 
@@ -82,12 +83,12 @@ void StoneNode::on_timer(const ros::TimerEvent&) {
   const UpdateResult result = sim_.update(now_ns);
   if (!result.error.empty()) {
     ROS_ERROR_THROTTLE(1.0, "stone_node: physics step failed, state held at %.9f s: %s",
-                       static_cast<double>(result.stamp_ns) * 1e-9, result.error.c_str());
+                       to_seconds(result.stamp_ns), result.error.c_str());
   }
   for (const SegmentEvent& event : result.events) {
     if (event.reason == EventReason::time_jump) {
       ROS_WARN("stone_node: ROS time jumped to %.9f s; the stone continues from there",
-               static_cast<double>(event.stamp_ns) * 1e-9);
+               to_seconds(event.stamp_ns));
     }
     if (event.reason == EventReason::start) info_pub_.publish(to_info_msg(sim_));
   }

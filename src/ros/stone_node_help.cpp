@@ -1,9 +1,50 @@
-#include "virtual_go/ros/stone_node.h"
+#include "virtual_go/ros/stone_node_help.h"
+
+#include <iomanip>
+#include <sstream>
+#include <vector>
+
+#include "virtual_go/common/formatting.h"
+#include "virtual_go/sim/segment_event.h"
+#include "virtual_go/sim/stone_parameters.h"
 
 namespace virtual_go {
+namespace {
 
-const char* stone_node_help() {
-  return R"(usage: rosrun virtual_go stone_node [__name:=stone] [_param:=value ...]
+// One parameter: name and unit in columns, then the help and default wrapped at word
+// boundaries to 100 columns (the default is never split).
+std::string parameter_line(const ParameterInfo& p) {
+  constexpr std::size_t kIndent = 37, kWidth = 100;
+  std::vector<std::string> words;
+  std::istringstream help(p.help);
+  for (std::string word; help >> word;) words.push_back(word);
+  if (!p.default_text.empty()) {
+    words.back() += ";";
+    words.push_back("default " + p.default_text);
+  }
+  std::ostringstream out;
+  out << "  " << std::left << std::setw(26) << "~" + p.name << " " << std::setw(7) << p.unit << " ";
+  std::size_t column = kIndent;
+  for (std::size_t i = 0; i < words.size(); ++i) {
+    if (i > 0 && column + 1 + words[i].size() > kWidth) {
+      out << "\n" << std::string(kIndent, ' ');
+      column = kIndent;
+    } else if (i > 0) {
+      out << " ";
+      ++column;
+    }
+    out << words[i];
+    column += words[i].size();
+  }
+  out << "\n";
+  return out.str();
+}
+
+}  // namespace
+
+std::string stone_node_help() {
+  std::ostringstream out;
+  out << R"(usage: rosrun virtual_go stone_node [__name:=stone] [_param:=value ...]
        roslaunch virtual_go stone.launch [rviz:=true] [record:=true] [bag:=FILE] [config:=YAML]
 
 Simulates a Go stone (a biconvex lens) as a rigid body on a timer on ROS time (use_sim_time
@@ -16,8 +57,9 @@ Published (private names, ~ = the node's name, e.g. /stone):
   ~odom                nav_msgs/Odometry: pose in the world frame, twist in the stone frame
   ~marker              visualization_msgs/Marker (latched): the lens as a TRIANGLE_LIST
   ~info                virtual_go/StoneInfo (latched): stone, model, integrator, dt, initial state
-  ~events              virtual_go/StoneEvent (latched): start of each motion segment (start,
-                       reset, auto_reset, set_state, set_angular_velocity, time_jump)
+  ~events              virtual_go/StoneEvent (latched): start of each motion segment
+                       ()"
+      << join(event_reason_names(), ", ") << R"()
 
 Services (changes take effect at the next physics step, which starts a new segment):
   ~set_angular_velocity  virtual_go/SetAngularVelocity: angular_velocity rad/s, frame
@@ -25,28 +67,10 @@ Services (changes take effect at the next physics step, which starts a new segme
   ~reset                 std_srvs/Trigger: back to the initial state (ROS time keeps running)
   ~set_state             virtual_go/SetState: pose and twist in the world frame
 
-Parameters (defaults in brackets):
-  ~rate                  publish rate, Hz, 0.001 to 10000 [60]
-  ~dt                    physics step, s, a whole number of ns, >= 1e-6 [0.001]
-  ~model                 constant_omega | rigid_body [rigid_body]
-  ~integrator            euler | rk4 | splitting | exact [exact]
-  ~gravity               [x, y, z] m/s^2, world frame [0, 0, -9.80665]
-  ~stone/size            Japanese size number 22..40, sets the height [33 = 9.2 mm]
-  ~stone/width           m [0.022]
-  ~stone/height          m, overrides ~stone/size
-  ~stone/material        slate | shell | glass | yunzi [slate]
-  ~stone/density         kg/m^3, overrides the material
-  ~stone/mass            kg, overrides density and material
-  ~stone/color           black | white [black]
-  ~initial/position      [x, y, z] m, world [0, 0, 0.05]
-  ~initial/orientation   [x, y, z, w] body -> world, normalised [0, 0, 0, 1]
-  ~initial/velocity      [x, y, z] m/s, world [0, 0, 0]
-  ~initial/angular_velocity  [x, y, z] rad/s, world [0, 0, 0]
-  ~max_angular_velocity  rad/s; larger requests are refused [500]
-  ~auto_reset_period     s; reset when a segment is this old, 0 = never, else > ~dt [0]
-  ~world_frame           [world]
-  ~stone_frame           [stone]
-
+Parameters (name, unit, meaning; default):
+)";
+  for (const ParameterInfo& p : stone_parameters()) out << parameter_line(p);
+  out << R"(
 Example (integers are fine for float64 fields; write exponents as 1.0e+9, since YAML reads
 1e9 as a string, which rosservice refuses):
   rosservice call /stone/set_angular_velocity '{angular_velocity: {x: 0, y: 0, z: 30}, frame: world}'
@@ -54,6 +78,7 @@ Example (integers are fine for float64 fields; write exponents as 1.0e+9, since 
 Options:
   -h, --help             print this help and exit
 )";
+  return out.str();
 }
 
 }  // namespace virtual_go

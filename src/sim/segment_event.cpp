@@ -1,23 +1,37 @@
 #include "virtual_go/sim/segment_event.h"
 
+#include <utility>
+#include <vector>
+
 namespace virtual_go {
+namespace {
+
+// Every reason once, in the order of the enum: names for messages, help and README.
+const std::vector<std::pair<EventReason, std::string>>& reasons() {
+  static const std::vector<std::pair<EventReason, std::string>> table{
+      {EventReason::start, "start"},
+      {EventReason::reset, "reset"},
+      {EventReason::auto_reset, "auto_reset"},
+      {EventReason::set_state, "set_state"},
+      {EventReason::set_angular_velocity, "set_angular_velocity"},
+      {EventReason::time_jump, "time_jump"},
+  };
+  return table;
+}
+
+}  // namespace
 
 std::string event_reason_name(EventReason reason) {
-  switch (reason) {
-    case EventReason::start:
-      return "start";
-    case EventReason::reset:
-      return "reset";
-    case EventReason::auto_reset:
-      return "auto_reset";
-    case EventReason::set_state:
-      return "set_state";
-    case EventReason::set_angular_velocity:
-      return "set_angular_velocity";
-    case EventReason::time_jump:
-      return "time_jump";
+  for (const auto& [r, name] : reasons()) {
+    if (r == reason) return name;
   }
   return "unknown";
+}
+
+std::vector<std::string> event_reason_names() {
+  std::vector<std::string> names;
+  for (const auto& entry : reasons()) names.push_back(entry.second);
+  return names;
 }
 
 }  // namespace virtual_go

@@ -8,10 +8,12 @@ namespace virtual_go {
 
 SimClock::SimClock(std::int64_t dt_ns, std::int64_t max_lag_ns)
     : dt_ns_(dt_ns), max_lag_ns_(max_lag_ns) {
-  if (dt_ns <= 0)
-    throw InvalidArgument("dt must be positive, got " + std::to_string(dt_ns) + " ns");
+  if (dt_ns <= 0) {
+    throw InvalidArgument("dt", "dt must be positive, got " + std::to_string(dt_ns) + " ns");
+  }
   if (max_lag_ns < dt_ns) {
-    throw InvalidArgument("max lag must be at least dt, got " + std::to_string(max_lag_ns) + " ns");
+    throw InvalidArgument("max lag",
+                          "max lag must be at least dt, got " + std::to_string(max_lag_ns) + " ns");
   }
 }
 

@@ -10,15 +10,17 @@ void check_angular_velocity(const std::string& field, const Eigen::Vector3d& ome
   require_finite(field, omega);
   const double norm = omega.norm();
   if (norm > limit.max_angular_velocity) {
-    throw InvalidArgument(field + ": |w| = " + format_value(norm) +
-                          " rad/s exceeds max_angular_velocity " +
-                          format_value(limit.max_angular_velocity) + " rad/s");
+    throw InvalidArgument(field, field + ": |w| = " + format_value(norm) +
+                                     " rad/s exceeds max_angular_velocity " +
+                                     format_value(limit.max_angular_velocity) + " rad/s");
   }
-  if (norm * limit.dt > limit.max_rotation_per_step) {
-    throw InvalidArgument(field + ": |w| = " + format_value(norm) + " rad/s is too fast for the " +
-                          limit.integrator + " integrator at dt " + format_value(limit.dt) +
-                          " s (at most " + format_value(limit.max_rotation_per_step / limit.dt) +
-                          " rad/s)");
+  if (norm * limit.dt_s > limit.max_rotation_per_step) {
+    throw InvalidArgument(field, field + ": |w| = " + format_value(norm) +
+                                     " rad/s is too fast for the " + limit.integrator +
+                                     " integrator at dt " + format_value(limit.dt_s) +
+                                     " s (at most " +
+                                     format_value(limit.max_rotation_per_step / limit.dt_s) +
+                                     " rad/s)");
   }
 }
 
@@ -30,7 +32,7 @@ RequestFrame request_frame(const std::string& field, const std::string& frame,
   if (world_frame != "world" || stone_frame != "stone") {
     known += ", or the frame ids '" + world_frame + "' or '" + stone_frame + "'";
   }
-  throw InvalidArgument(field + ": unknown frame '" + frame + "' (use " + known + ")");
+  throw InvalidArgument(field, field + ": unknown frame '" + frame + "' (use " + known + ")");
 }
 
 RigidBodyState state_from_request(const StateFieldNames& fields, const MotionModel& model,

@@ -1,15 +1,18 @@
 #include "virtual_go/sim/stone_config.h"
 
+#include <algorithm>
 #include <cmath>
+#include <map>
+#include <optional>
 
-#include "virtual_go/flight/integrator.h"
-#include "virtual_go/body/motion_model.h"
+#include "virtual_go/common/sim_time.h"
+#include "virtual_go/flight/integrator_registry.h"
 
 namespace virtual_go {
 namespace {
 
 [[noreturn]] void fail(const std::string& param, const std::string& problem) {
-  throw ConfigError("~" + param + ": " + problem);
+  throw ConfigError("~" + param, "~" + param + ": " + problem);
 }
 
 void require_positive_param(const std::string& param, double value, const std::string& unit) {
@@ -28,93 +31,111 @@ void check_frame(const std::string& param, const std::string& frame) {
   if (frame[0] == '/') fail(param, "must not start with '/', got '" + frame + "'");
 }
 
-// The ROS parameter behind an error of make_stone, from the field its message starts with.
-std::string stone_parameter(const std::string& message, const StoneSpec& spec) {
-  auto starts_with = [&message](const char* field) { return message.rfind(field, 0) == 0; };
-  if (starts_with("stone width")) return "stone/width";
-  if (starts_with("unknown stone size")) return "stone/size";
-  // Also "must be less than the width": the height comes from ~stone/height or ~stone/size.
-  if (starts_with("stone height")) return spec.height ? "stone/height" : "stone/size";
-  if (starts_with("unknown stone material")) return "stone/material";
-  if (starts_with("density") && spec.density) return "stone/density";
-  if (starts_with("mass") && spec.mass) return "stone/mass";
-  // A derived mass, density or moment underflowed (a vanishing stone or override): blame the
-  // override that set it, else the dimensions.
-  if (spec.mass) return "stone/mass";
-  if (spec.density) return "stone/density";
-  return spec.height ? "stone/height" : "stone/width";
+// The parameter behind each StoneSpec member, as make_stone's InvalidArgument::field() names it.
+const std::string& stone_parameter(const std::string& spec_field) {
+  static const std::map<std::string, std::string> parameters = {
+      {"size_number", "stone/size"},         {"width", "stone/width"},
+      {"height", "stone/height"},            {"material", "stone/material"},
+      {"density", "stone/density"},          {"mass", "stone/mass"}};
+  return parameters.at(spec_field);
 }
 
-// make_stone checks every field of the spec; only its messages name core fields, not the
-// ~stone/... parameters.
-void check_stone(const StoneSpec& spec) {
+// A name from a table: the table's own error, under the parameter's name.
+template <class Lookup>
+auto named(const std::string& param, Lookup&& lookup) {
   try {
-    make_stone(spec);
+    return lookup();
   } catch (const InvalidArgument& e) {
-    fail(stone_parameter(e.what(), spec), e.what());
+    fail(param, e.what());
   }
 }
 
 }  // namespace
 
-std::int64_t dt_to_ns(double dt) {
-  require_positive_param("dt", dt, "s");
-  const double ns = dt * 1e9;
-  if (ns > 1e15) fail("dt", "is too large: " + format_value(dt) + " s");
+const std::vector<std::string>& stone_colors() {
+  static const std::vector<std::string> colors{"black", "white"};
+  return colors;
+}
+
+std::int64_t dt_to_ns(double dt_s) {
+  require_positive_param("dt", dt_s, "s");
+  const double ns = to_nanoseconds(dt_s);
+  if (ns > 1e15) fail("dt", "is too large: " + format_value(dt_s) + " s");
   const double whole = std::round(ns);
   if (std::abs(ns - whole) > 1e-6) {
     fail("dt", "must be a whole number of nanoseconds (stamps are whole nanoseconds), got " +
-                   format_value(dt) + " s = " + format_value(ns) + " ns; try " +
-                   format_value(whole * 1e-9) + " s");
+                   format_value(dt_s) + " s = " + format_value(ns) + " ns; try " +
+                   format_value(to_seconds(static_cast<std::int64_t>(whole))) + " s");
   }
   const auto dt_ns = static_cast<std::int64_t>(whole);
   if (dt_ns < kMinDtNs) {
-    fail("dt", "must be at least " + format_value(kMinDtNs * 1e-9) + " s, got " + format_value(dt) +
-                   " s");
+    fail("dt", "must be at least " + format_value(to_seconds(kMinDtNs)) + " s, got " +
+                   format_value(dt_s) + " s");
   }
   return dt_ns;
 }
 
-void validate_config(const StoneConfig& c) {
-  if (!(c.rate >= kMinRate && c.rate <= kMaxRate)) {  // also refuses NaN
-    fail("rate", "must be between " + format_value(kMinRate) + " and " + format_value(kMaxRate) +
-                     " Hz, got " + format_value(c.rate));
+CheckedConfig check_config(const StoneConfig& c) {
+  if (!(c.rate_hz >= kMinRateHz && c.rate_hz <= kMaxRateHz)) {  // also refuses NaN
+    fail("rate", "must be between " + format_value(kMinRateHz) + " and " +
+                     format_value(kMaxRateHz) + " Hz, got " + format_value(c.rate_hz));
   }
-  const std::int64_t dt_ns = dt_to_ns(c.dt);
+  const std::int64_t dt_ns = dt_to_ns(c.dt_s);
+  const MotionModelKind model = named("model", [&] { return motion_model_from_name(c.model); });
+  const IntegratorInfo* integrator =
+      named("integrator", [&] { return &integrators().at(c.integrator); });
+  require_finite_param("gravity", c.gravity_world);
+  // make_stone checks every field of the spec and names the one to blame; the message names
+  // core fields, the parameter comes from field().
+  std::optional<Stone> stone;
   try {
-    motion_model_from_name(c.model);
+    stone = make_stone(c.stone);
   } catch (const InvalidArgument& e) {
-    fail("model", e.what());
+    fail(stone_parameter(e.field()), e.what());
   }
-  bool known_integrator = false;
-  for (const std::string& name : integrator_names()) known_integrator |= name == c.integrator;
-  if (!known_integrator) {
-    std::string known;
-    for (const std::string& name : integrator_names()) known += " " + name;
-    fail("integrator", "unknown integrator '" + c.integrator + "' (known:" + known + ")");
-  }
-  require_finite_param("gravity", c.gravity);
-  check_stone(c.stone);
-  if (c.color != "black" && c.color != "white") {
-    fail("stone/color", "must be 'black' or 'white', got '" + c.color + "'");
+  const std::vector<std::string>& colors = stone_colors();
+  if (std::find(colors.begin(), colors.end(), c.color) == colors.end()) {
+    std::vector<std::string> quoted;
+    for (const std::string& color : colors) quoted.push_back("'" + color + "'");
+    fail("stone/color", "must be " + join(quoted, " or ") + ", got '" + c.color + "'");
   }
   require_positive_param("max_angular_velocity", c.max_angular_velocity, "rad/s");
-  if (!std::isfinite(c.auto_reset_period) || c.auto_reset_period < 0.0 ||
-      c.auto_reset_period > 1e6) {
-    fail("auto_reset_period",
-         "must be between 0 (never) and 1e6 s, got " + format_value(c.auto_reset_period));
+  if (!std::isfinite(c.auto_reset_period_s) || c.auto_reset_period_s < 0.0 ||
+      c.auto_reset_period_s > kMaxAutoResetPeriodS) {
+    fail("auto_reset_period", "must be between 0 (never) and " +
+                                  format_value(kMaxAutoResetPeriodS) + " s, got " +
+                                  format_value(c.auto_reset_period_s));
   }
+  const std::int64_t auto_reset_ns = round_to_ns(c.auto_reset_period_s);
   // A segment is reset at the first step at which its age reaches the period: one of ~dt or
   // less would reset the stone at every step, so it could never move.
-  if (c.auto_reset_period > 0.0 && std::llround(c.auto_reset_period * 1e9) <= dt_ns) {
-    fail("auto_reset_period", "must be 0 (never) or longer than ~dt " + format_value(c.dt) +
-                                  " s, got " + format_value(c.auto_reset_period) + " s");
+  if (c.auto_reset_period_s > 0.0 && auto_reset_ns <= dt_ns) {
+    fail("auto_reset_period", "must be 0 (never) or longer than ~dt " + format_value(c.dt_s) +
+                                  " s, got " + format_value(c.auto_reset_period_s) + " s");
   }
   check_frame("world_frame", c.world_frame);
   check_frame("stone_frame", c.stone_frame);
   if (c.world_frame == c.stone_frame) {
     fail("stone_frame", "must differ from ~world_frame, both are '" + c.world_frame + "'");
   }
+
+  const MotionSetup setup{MotionModel(model, stone->mass_properties), c.gravity_world};
+  const double dt_s = to_seconds(dt_ns);
+  const AngularVelocityLimit limit{c.max_angular_velocity, integrator->max_rotation_per_step,
+                                   dt_s, integrator->name};
+  RigidBodyState initial;
+  try {
+    initial = state_from_request({"~initial/position", "~initial/orientation",
+                                  "~initial/velocity", "~initial/angular_velocity"},
+                                 setup.model, c.initial_position_world,
+                                 c.initial_orientation_xyzw, c.initial_velocity_world,
+                                 c.initial_angular_velocity_world, limit);
+  } catch (const InvalidArgument& e) {
+    throw ConfigError(e.field(), e.what());
+  }
+  return CheckedConfig{c, *stone, setup, integrator, dt_ns, dt_s, auto_reset_ns, limit, initial};
 }
+
+void validate_config(const StoneConfig& config) { check_config(config); }
 
 }  // namespace virtual_go

@@ -4,53 +4,33 @@
 #include <cmath>
 #include <optional>
 
+#include "virtual_go/common/sim_time.h"
+#include "virtual_go/flight/integrator_registry.h"
+
 namespace virtual_go {
 namespace {
 
-constexpr std::int64_t kMaxLagNs = 1000000000;  // 1 s behind ROS time: skip rather than catch up
-
-Stone checked_stone(const StoneConfig& config) {
-  validate_config(config);  // before any core object is built from it
-  return make_stone(config.stone);
-}
-
-SimClock make_clock(double dt) {
-  const std::int64_t dt_ns = dt_to_ns(dt);
-  return SimClock(dt_ns, std::max(kMaxLagNs, 2 * dt_ns));
-}
+// 1 s behind ROS time: skip rather than catch up.
+constexpr std::int64_t kMaxLagNs = kNanosecondsPerSecond;
 
 }  // namespace
 
-StoneSimulation::StoneSimulation(const StoneConfig& config)
-    : config_(config),
-      stone_(checked_stone(config)),
-      setup_{MotionModel(motion_model_from_name(config.model), stone_.mass_properties),
-             config.gravity},
-      integrator_(make_integrator(config.integrator, setup_)),
-      auto_reset_ns_(std::llround(config.auto_reset_period * 1e9)),
-      clock_(make_clock(config.dt)) {
-  try {
-    initial_ = state_from_request({"~initial/position", "~initial/orientation", "~initial/velocity",
-                                   "~initial/angular_velocity"},
-                                  setup_.model, config.initial_position, config.initial_orientation,
-                                  config.initial_velocity, config.initial_angular_velocity,
-                                  angular_velocity_limit());
-  } catch (const InvalidArgument& e) {
-    throw ConfigError(e.what());
-  }
-  state_ = initial_;
-}
+StoneSimulation::StoneSimulation(const StoneConfig& config) : StoneSimulation(check_config(config)) {}
 
-AngularVelocityLimit StoneSimulation::angular_velocity_limit() const {
-  return {config_.max_angular_velocity, integrator_->max_rotation_per_step(), dt(),
-          integrator_->name()};
-}
+StoneSimulation::StoneSimulation(CheckedConfig checked)
+    : checked_(std::move(checked)),
+      integrator_(checked_.integrator->make(*checked_.integrator, checked_.setup)),
+      clock_(checked_.dt_ns, std::max(kMaxLagNs, 2 * checked_.dt_ns)),
+      state_(checked_.initial_state) {}
 
-void StoneSimulation::reset() { pending_.push_back({EventReason::reset, initial_, {}, {}}); }
+void StoneSimulation::reset() {
+  pending_.push_back({EventReason::reset, checked_.initial_state, {}, {}});
+}
 
 void StoneSimulation::set_angular_velocity(const Eigen::Vector3d& omega, const std::string& frame) {
-  const RequestFrame f = request_frame("frame", frame, config_.world_frame, config_.stone_frame);
-  check_angular_velocity("angular_velocity", omega, angular_velocity_limit());
+  const StoneConfig& c = checked_.config;
+  const RequestFrame f = request_frame("frame", frame, c.world_frame, c.stone_frame);
+  check_angular_velocity("angular_velocity", omega, checked_.angular_velocity_limit);
   pending_.push_back({EventReason::set_angular_velocity, {}, omega, f});
 }
 
@@ -60,9 +40,14 @@ void StoneSimulation::set_state(const Eigen::Vector3d& position_world,
                                 const Eigen::Vector3d& angular_velocity_world) {
   const RigidBodyState s =
       state_from_request({"pose.position", "pose.orientation", "twist.linear", "twist.angular"},
-                         setup_.model, position_world, orientation_xyzw, velocity_world,
-                         angular_velocity_world, angular_velocity_limit());
+                         checked_.setup.model, position_world, orientation_xyzw,
+                         velocity_world, angular_velocity_world, checked_.angular_velocity_limit);
   pending_.push_back({EventReason::set_state, s, {}, {}});
+}
+
+void StoneSimulation::replace_state(const RigidBodyState& state) {
+  state_ = state;
+  flight_cache_.invalidate();  // the integrator must not continue the old motion
 }
 
 void StoneSimulation::begin_segment(EventReason reason, std::int64_t stamp_ns,
@@ -81,7 +66,7 @@ UpdateResult StoneSimulation::update(std::int64_t now_ns) {
     case SimClock::Action::start:
       clock_.restart(now_ns);
       start_ns_ = now_ns;
-      state_ = initial_;
+      replace_state(checked_.initial_state);
       begin_segment(EventReason::start, now_ns, result);
       break;
     case SimClock::Action::jump_back:
@@ -116,7 +101,8 @@ UpdateResult StoneSimulation::update(std::int64_t now_ns) {
 
 void StoneSimulation::step(UpdateResult& result) {
   const std::int64_t next_ns = clock_.next_time_ns();
-  const bool auto_reset = auto_reset_ns_ > 0 && next_ns - segment_start_ns_ >= auto_reset_ns_;
+  const std::int64_t auto_reset_ns = checked_.auto_reset_ns;
+  const bool auto_reset = auto_reset_ns > 0 && next_ns - segment_start_ns_ >= auto_reset_ns;
   RigidBodyState next = state_;
   // A change that replaces the whole state (any pending one: all apply at this step) makes
   // integrating this step pointless, and lets a reset recover from a state the integrator
@@ -124,7 +110,8 @@ void StoneSimulation::step(UpdateResult& result) {
   const bool replaced =
       auto_reset || std::any_of(pending_.begin(), pending_.end(),
                                 [](const Change& change) { return change.replaces_state(); });
-  if (!replaced) integrator_->advance(next, dt());  // throws with nothing changed
+  // Throws with nothing changed (the cache then starts afresh at the next step).
+  if (!replaced) integrator_->advance(next, checked_.dt_s, flight_cache_);
 
   clock_.step();
   state_ = next;
@@ -132,17 +119,17 @@ void StoneSimulation::step(UpdateResult& result) {
   // change: an event each would make segments of zero length at the same stamp.
   std::optional<EventReason> reason;
   if (auto_reset) {
-    state_ = initial_;
+    replace_state(checked_.initial_state);
     reason = EventReason::auto_reset;
   }
   for (const Change& change : pending_) {
     if (change.replaces_state()) {
-      state_ = change.state;
+      replace_state(change.state);
     } else {
       const Eigen::Vector3d omega_world = change.frame == RequestFrame::body
                                               ? Eigen::Vector3d(state_.orientation * change.omega)
                                               : change.omega;
-      state_ = with_angular_velocity_world(setup_.model, state_, omega_world);
+      replace_state(with_angular_velocity_world(checked_.setup.model, state_, omega_world));
     }
     reason = change.reason;
   }

@@ -14,7 +14,7 @@
 #include "virtual_go/bag/report.h"
 #include "virtual_go/bag/stamp_statistics.h"
 #include "virtual_go/bag/thresholds.h"
-#include "virtual_go/flight/integrator.h"
+#include "virtual_go/flight/integrator_registry.h"
 #include "virtual_go/common/validation.h"
 
 namespace vb = virtual_go::bag;
@@ -27,13 +27,13 @@ vb::RecordingInfo info(const std::string& integrator = "exact") {
   vb::RecordingInfo i;
   i.topic = "/stone/info";
   i.mass = virtual_go_test::kMass;
-  i.principal_moments = {virtual_go_test::kI1, virtual_go_test::kI1, virtual_go_test::kI3};
+  i.principal_moments_body = {virtual_go_test::kI1, virtual_go_test::kI1, virtual_go_test::kI3};
   i.model = "rigid_body";
   i.integrator = integrator;
-  i.dt = 1e-3;
+  i.dt_s = 1e-3;
   i.dt_ns = kMs;
-  i.rate = 50.0;
-  i.gravity = {0.0, 0.0, -9.80665};
+  i.rate_hz = 50.0;
+  i.gravity_world = {0.0, 0.0, -9.80665};
   return i;
 }
 
@@ -225,7 +225,7 @@ TEST(CheckPhysics, BadInfoIsRejected) {
 
 TEST(CheckPhysics, NonAxisymmetricInertiaHasNoPrediction) {
   vb::RecordingInfo i = info();
-  i.principal_moments.y() *= 1.5;
+  i.principal_moments_body.y() *= 1.5;
   const vb::PhysicsResult r = vb::check_physics(i, {odom_at(0, 0), odom_at(kMs, 0.001)}, {});
   ASSERT_EQ(r.segments.size(), 1u);
   EXPECT_FALSE(r.segments[0].predicted);
@@ -249,13 +249,8 @@ TEST(Thresholds, BoundsFollowTheIntegrator) {
 }
 
 TEST(Thresholds, EveryIntegratorHasABound) {
-  const std::vector<std::string> names = virtual_go::integrator_names();
-  for (const std::string& name : names) {
-    EXPECT_NE(vb::integrator_bound(name), nullptr) << name;
+  for (const std::string& name : virtual_go::integrator_names()) {
     EXPECT_NE(vb::default_limits_text().find("  " + name + " "), std::string::npos) << name;
-  }
-  for (const vb::IntegratorBound& b : vb::integrator_bounds()) {
-    EXPECT_NE(std::find(names.begin(), names.end(), b.integrator), names.end()) << b.integrator;
   }
   try {
     vb::physics_bounds("leapfrog", 1e-3, vb::SegmentResult{}, 9.8, vb::LimitOverrides{});
@@ -280,18 +275,18 @@ TEST(Thresholds, ReadmeTableMatchesTheCode) {
     while (std::getline(in, cell, '|')) cells.push_back(cell);
     if (cells.size() != 5) continue;
     const std::string name = cells[0].substr(1, cells[0].size() - 2);
-    if (vb::integrator_bound(name) == nullptr) continue;
+    if (virtual_go::find_integrator(name) == nullptr) continue;
     for (std::size_t i = 1; i < cells.size(); ++i) {
       rows[name].push_back(std::strtod(cells[i].c_str(), nullptr));  // "0 (so ...)" reads 0
     }
   }
-  for (const vb::IntegratorBound& b : vb::integrator_bounds()) {
-    ASSERT_EQ(rows[b.integrator].size(), 4u) << "no README row for " << b.integrator;
-    const std::vector<double>& r = rows[b.integrator];
-    EXPECT_EQ(r[0], b.order) << b.integrator;
-    EXPECT_EQ(r[1], b.k_orientation) << b.integrator;
-    EXPECT_EQ(r[2], b.k_energy) << b.integrator;
-    EXPECT_EQ(r[3], b.k_gravity) << b.integrator;
+  for (const virtual_go::IntegratorInfo& b : virtual_go::integrators().entries()) {
+    ASSERT_EQ(rows[b.name].size(), 4u) << "no README row for " << b.name;
+    const std::vector<double>& r = rows[b.name];
+    EXPECT_EQ(r[0], b.order) << b.name;
+    EXPECT_EQ(r[1], b.error_bound.k_orientation) << b.name;
+    EXPECT_EQ(r[2], b.error_bound.k_energy) << b.name;
+    EXPECT_EQ(r[3], b.error_bound.k_gravity) << b.name;
   }
 }
 

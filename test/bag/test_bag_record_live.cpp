@@ -74,7 +74,7 @@ TEST(BagRecordLive, RecordingPassesBagReportStrict) {
   EXPECT_TRUE(r.problems.empty()) << r.problems.front();
   ASSERT_TRUE(r.recording.info) << "latched ~info not recorded";
   ASSERT_FALSE(r.recording.events.empty()) << "latched ~events not recorded";
-  const double rate = r.recording.info->rate;
+  const double rate = r.recording.info->rate_hz;
 
   for (const std::string name : {"/stone/odom", "/stone/pose", "/tf world->stone"}) {
     std::size_t i = 0;
@@ -98,8 +98,8 @@ TEST(BagRecordLive, RecordingPassesBagReportStrict) {
     if (seg.samples == 0) continue;
     ASSERT_TRUE(seg.predicted) << seg.note;
     const vb::PhysicsBounds b =
-        vb::physics_bounds(r.recording.info->integrator, r.recording.info->dt, seg,
-                           r.recording.info->gravity.norm(), {});
+        vb::physics_bounds(r.recording.info->integrator, r.recording.info->dt_s, seg,
+                           r.recording.info->gravity_world.norm(), {});
     EXPECT_LE(seg.max_orientation_error, b.orientation_error) << seg.plan.reason;
     EXPECT_LE(seg.max_position_error, b.position_error) << seg.plan.reason;
     EXPECT_LE(seg.max_energy_drift, b.energy_drift) << seg.plan.reason;

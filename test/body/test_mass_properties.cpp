@@ -80,14 +80,14 @@ TEST(MassProperties, ClosedFormMatchesSliceAndShellIntegration) {
   const double density = 2600.0;
   // Every catalogue size, plus a nearly flat and a nearly round lens.
   std::vector<std::pair<double, double>> shapes;
-  for (int size : vg::StoneShape::size_numbers()) {
-    shapes.emplace_back(0.022, vg::StoneShape::thickness_for_size(size));
+  for (int size : vg::size_numbers()) {
+    shapes.emplace_back(0.022, vg::thickness_for_size(size));
   }
   shapes.emplace_back(0.030, 0.001);
   shapes.emplace_back(0.020, 0.0195);
   for (const auto& [w, h] : shapes) {
     SCOPED_TRACE("width " + std::to_string(w) + " height " + std::to_string(h));
-    const vg::StoneShape shape(w, h);
+    const vg::LensShape shape(w, h);
     const vg::MassProperties mp = vg::MassProperties::of_lens(shape, density);
     for (const Integrated& num : {integrate_slices(w / 2, h / 2), integrate_shells(w / 2, h / 2)}) {
       expect_relative(num.volume, shape.volume(), 1e-10, "volume");
@@ -101,7 +101,7 @@ TEST(MassProperties, ClosedFormMatchesSliceAndShellIntegration) {
 }
 
 TEST(MassProperties, LensGeometryMatchesTheTwoSpheres) {
-  const vg::StoneShape shape(0.022, 0.009);
+  const vg::LensShape shape(0.022, 0.009);
   const double a = 0.011, c = 0.0045, d = centre_offset(a, c);
   EXPECT_NEAR(shape.sphere_center_offset(), d, 1e-15);
   EXPECT_NEAR(shape.sphere_radius(), c + d, 1e-15);
@@ -119,10 +119,10 @@ TEST(MassProperties, LensGeometryMatchesTheTwoSpheres) {
 }
 
 TEST(MassProperties, SphereLimit) {
-  // StoneShape needs height < width, so approach c = a: I -> 2/5 m a^2 with error O(1 - c/a).
+  // LensShape needs height < width, so approach c = a: I -> 2/5 m a^2 with error O(1 - c/a).
   const double w = 0.02, density = 2700.0;
   for (double gap : {1e-4, 1e-6, 1e-8}) {
-    const vg::StoneShape shape(w, w * (1 - gap));
+    const vg::LensShape shape(w, w * (1 - gap));
     const vg::MassProperties mp = vg::MassProperties::of_lens(shape, density);
     const double a = w / 2;
     const double sphere_mass = density * 4.0 / 3.0 * M_PI * a * a * a;
@@ -137,7 +137,7 @@ TEST(MassProperties, ThinDiscLimit) {
   // disc's m a^2 / 2) and I1 -> I3 / 2 (perpendicular-axis theorem); corrections are O(c^2/a^2).
   const double w = 0.022;
   for (double ratio : {1e-2, 1e-4, 1e-6}) {
-    const vg::StoneShape shape(w, w * ratio);
+    const vg::LensShape shape(w, w * ratio);
     const vg::MassProperties mp = vg::MassProperties::of_lens(shape, 2500.0);
     const double a = w / 2, m = mp.mass();
     const double tol = 2 * ratio * ratio + 1e-13;
@@ -150,7 +150,7 @@ TEST(MassProperties, ThinDiscLimit) {
 TEST(MassProperties, WorkedExampleFromDesign) {
   // w 22 mm, h 9 mm, slate: m 4.876 g, I3 2.0239e-7, I1 1.1835e-7 kg m^2 (rounded as printed).
   const vg::MassProperties mp =
-      vg::MassProperties::of_lens(vg::StoneShape(0.022, 0.009), vg::material_density("slate"));
+      vg::MassProperties::of_lens(vg::LensShape(0.022, 0.009), vg::material_density("slate"));
   EXPECT_NEAR(mp.mass(), 4.876e-3, 0.0005e-3);
   EXPECT_NEAR(mp.principal_moments_body().z(), 2.0239e-7, 0.00005e-7);
   EXPECT_NEAR(mp.principal_moments_body().x(), 1.1835e-7, 0.00005e-7);
@@ -167,7 +167,7 @@ TEST(MassProperties, Size33SlateWeighsAboutFiveGrams) {
 }
 
 TEST(MassProperties, ExplicitMassOverridesDensityAndScalesTheMoments) {
-  const vg::StoneShape shape(0.022, 0.0092);
+  const vg::LensShape shape(0.022, 0.0092);
   const vg::MassProperties by_density = vg::MassProperties::of_lens(shape, 2700.0);
   const vg::MassProperties by_mass = vg::MassProperties::of_lens_with_mass(shape, 6.0e-3);
   EXPECT_DOUBLE_EQ(by_mass.mass(), 6.0e-3);

@@ -6,7 +6,7 @@
 
 #include "support/physics_reference.h"
 #include "virtual_go/flight/exact_motion.h"
-#include "virtual_go/flight/integrator.h"
+#include "virtual_go/flight/integrator_registry.h"
 #include "virtual_go/body/rigid_body.h"
 #include "virtual_go/go/stone.h"
 #include "virtual_go/geometry/tessellation.h"
@@ -44,27 +44,27 @@ vg::RigidBodyState good_state(const vg::MotionSetup& setup) {
 
 }  // namespace
 
-TEST(BadInput, StoneShapeRejectsNonFiniteAndNonPositiveSizes) {
-  expect_rejected([] { vg::StoneShape(kNan, 0.009); }, {"width", "nan"});
-  expect_rejected([] { vg::StoneShape(kInf, 0.009); }, {"width", "inf"});
-  expect_rejected([] { vg::StoneShape(0.0, 0.009); }, {"width", "0"});
-  expect_rejected([] { vg::StoneShape(-0.022, 0.009); }, {"width", "-0.022"});
-  expect_rejected([] { vg::StoneShape(0.022, kNan); }, {"height", "nan"});
-  expect_rejected([] { vg::StoneShape(0.022, 0.0); }, {"height", "0"});
-  expect_rejected([] { vg::StoneShape(0.022, -0.009); }, {"height", "-0.009"});
+TEST(BadInput, LensShapeRejectsNonFiniteAndNonPositiveSizes) {
+  expect_rejected([] { vg::LensShape(kNan, 0.009); }, {"width", "nan"});
+  expect_rejected([] { vg::LensShape(kInf, 0.009); }, {"width", "inf"});
+  expect_rejected([] { vg::LensShape(0.0, 0.009); }, {"width", "0"});
+  expect_rejected([] { vg::LensShape(-0.022, 0.009); }, {"width", "-0.022"});
+  expect_rejected([] { vg::LensShape(0.022, kNan); }, {"height", "nan"});
+  expect_rejected([] { vg::LensShape(0.022, 0.0); }, {"height", "0"});
+  expect_rejected([] { vg::LensShape(0.022, -0.009); }, {"height", "-0.009"});
 }
 
 TEST(BadInput, HeightMustBeBelowWidth) {
-  expect_rejected([] { vg::StoneShape(0.022, 0.022); }, {"height", "0.022"});
-  expect_rejected([] { vg::StoneShape(0.022, 0.0305); }, {"height", "0.0305", "width"});
+  expect_rejected([] { vg::LensShape(0.022, 0.022); }, {"height", "0.022"});
+  expect_rejected([] { vg::LensShape(0.022, 0.0305); }, {"height", "0.0305", "width"});
   vg::StoneSpec spec;
   spec.height = 0.025;
   expect_rejected([&] { vg::make_stone(spec); }, {"height", "0.025"});
 }
 
 TEST(BadInput, UnknownNamesAndSizeNumbers) {
-  expect_rejected([] { vg::StoneShape::thickness_for_size(41); }, {"size", "41"});
-  expect_rejected([] { vg::StoneShape::from_size(0); }, {"size", "0"});
+  expect_rejected([] { vg::thickness_for_size(41); }, {"size", "41"});
+  expect_rejected([] { vg::lens_for_size(0); }, {"size", "0"});
   expect_rejected([] { vg::material_density("marble"); }, {"material", "marble"});
   expect_rejected([] { vg::material_density("Slate"); }, {"material", "Slate"});  // exact names
   expect_rejected([] { vg::motion_model_from_name("wobbly"); }, {"model", "wobbly"});
@@ -93,7 +93,7 @@ TEST(BadInput, MassDensityAndMomentsMustBePositiveAndFinite) {
   spec = vg::StoneSpec{};
   spec.width = -1.0;
   expect_rejected([&] { vg::make_stone(spec); }, {"width", "-1"});
-  const vg::StoneShape shape(0.022, 0.009);
+  const vg::LensShape shape(0.022, 0.009);
   expect_rejected([&] { vg::MassProperties::of_lens(shape, 0.0); }, {"density", "0"});
   expect_rejected([&] { vg::MassProperties::of_lens_with_mass(shape, -3.0); }, {"mass", "-3"});
   expect_rejected([] { vg::MassProperties(1.0, Eigen::Vector3d(1.0, -2.0, 1.0)); }, {"Iyy", "-2"});
@@ -135,7 +135,7 @@ TEST(BadInput, GravityTimeAndTessellationParameters) {
   }
   const vg::ExactMotion motion(stone_setup(), good_state(stone_setup()));
   expect_rejected([&] { motion.state_at(kNan); }, {"time", "nan"});
-  const vg::StoneShape shape(0.022, 0.009);
+  const vg::LensShape shape(0.022, 0.009);
   expect_rejected([&] { vg::tessellate_lens(shape, 2, 4); }, {"segments", "2"});
   expect_rejected([&] { vg::tessellate_lens(shape, 16, 0); }, {"rings", "0"});
 }

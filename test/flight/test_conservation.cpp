@@ -8,7 +8,8 @@
 #include <cstdio>
 
 #include "support/physics_reference.h"
-#include "virtual_go/flight/integrator.h"
+#include "virtual_go/flight/flight_cache.h"
+#include "virtual_go/flight/integrator_registry.h"
 #include "virtual_go/body/rigid_body.h"
 #include "virtual_go/go/stone.h"
 
@@ -56,10 +57,11 @@ Errors run(const std::string& name, const vg::MotionSetup& setup, double dt, dou
   const double e_rot0 = rot_energy(s), e0 = total_energy(s), axial0 = axial(s);
 
   auto integrator = vg::make_integrator(name, setup);
+  vg::FlightCache cache;  // the stone's own, carried from step to step
   Errors err;
   const int n = static_cast<int>(std::lround(t_end / dt));
   for (int i = 1; i <= n; ++i) {
-    integrator->advance(s, dt);
+    integrator->advance(s, dt, cache);
     const double de = std::abs(rot_energy(s) / e_rot0 - 1);
     err.rot_energy_max = std::max(err.rot_energy_max, de);
     if (2 * i <= n) err.rot_energy_max_first_half = err.rot_energy_max;

@@ -9,7 +9,8 @@
 
 #include "support/physics_reference.h"
 #include "virtual_go/flight/exact_motion.h"
-#include "virtual_go/flight/integrator.h"
+#include "virtual_go/flight/flight_cache.h"
+#include "virtual_go/flight/integrator_registry.h"
 #include "virtual_go/body/rigid_body.h"
 #include "virtual_go/go/stone.h"
 
@@ -41,9 +42,10 @@ double error_at(const std::string& name, double dt, double t_end) {
   vg::RigidBodyState s = start(setup);
   const vg::RigidBodyState s0 = s;
   auto integrator = vg::make_integrator(name, setup);
+  vg::FlightCache cache;  // the stone's own, carried from step to step
   const int n = static_cast<int>(std::lround(t_end / dt));
   for (int i = 0; i < n; ++i) {
-    integrator->advance(s, dt);
+    integrator->advance(s, dt, cache);
     // The model's defining property: world omega never changes.
     EXPECT_TRUE(
         vg::RigidBody(setup.model, s).angular_velocity_world().isApprox(kOmegaWorld, 1e-14));

@@ -7,7 +7,8 @@
 #include <cstdio>
 
 #include "support/physics_reference.h"
-#include "virtual_go/flight/integrator.h"
+#include "virtual_go/flight/flight_cache.h"
+#include "virtual_go/flight/integrator_registry.h"
 #include "virtual_go/body/rigid_body.h"
 #include "virtual_go/go/stone.h"
 
@@ -41,10 +42,11 @@ struct RunResult {
 RunResult run_to(const std::string& name, const vg::MotionSetup& setup, vg::RigidBodyState s,
                  double dt, double t_end, const Quat& q_ref) {
   auto integrator = vg::make_integrator(name, setup);
+  vg::FlightCache cache;  // the stone's own, carried from step to step
   const int n = static_cast<int>(std::lround(t_end / dt));
   double worst_norm_error = 0;
   for (int i = 0; i < n; ++i) {
-    integrator->advance(s, dt);
+    integrator->advance(s, dt, cache);
     worst_norm_error = std::max(worst_norm_error, std::abs(s.orientation.norm() - 1));
   }
   const Eigen::Vector3d x_ref = kX0 + kV0 * t_end + 0.5 * setup.gravity_world * t_end * t_end;

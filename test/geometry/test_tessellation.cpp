@@ -32,7 +32,7 @@ double lens_volume(double a, double c) { return M_PI * c * (3 * a * a + c * c) /
 }  // namespace
 
 TEST(Tessellation, MeshIsClosedAndConsistentlyOriented) {
-  const vg::StoneShape shape(0.022, 0.0092);
+  const vg::LensShape shape(0.022, 0.0092);
   for (const auto& [segments, rings] :
        std::vector<std::pair<int, int>>{{3, 1}, {4, 2}, {7, 3}, {32, 8}}) {
     SCOPED_TRACE(std::to_string(segments) + " segments, " + std::to_string(rings) + " rings");
@@ -75,7 +75,7 @@ TEST(Tessellation, MeshIsClosedAndConsistentlyOriented) {
 TEST(Tessellation, VerticesLieOnTheSphericalFaces) {
   const double a = 0.011, c = 0.0046;
   const double d = (a * a - c * c) / (2 * c), r = c + d;  // face spheres at -/+ d, radius r
-  const vg::TriangleMesh mesh = vg::tessellate_lens(vg::StoneShape(2 * a, 2 * c), 24, 6);
+  const vg::TriangleMesh mesh = vg::tessellate_lens(vg::LensShape(2 * a, 2 * c), 24, 6);
   bool top_pole = false, bottom_pole = false;
   for (const Eigen::Vector3d& v : mesh.vertices) {
     const Eigen::Vector3d centre(0, 0, v.z() >= 0 ? -d : d);
@@ -91,7 +91,7 @@ TEST(Tessellation, VerticesLieOnTheSphericalFaces) {
 TEST(Tessellation, EnclosedVolumeConvergesToTheLensVolumeAtSecondOrder) {
   // An inscribed polyhedron of a smooth convex surface misses a volume O(h^2) in the edge length.
   const double a = 0.011, c = 0.0046;
-  const vg::StoneShape shape(2 * a, 2 * c);
+  const vg::LensShape shape(2 * a, 2 * c);
   const double exact = lens_volume(a, c);
   std::vector<double> hs, errors;
   for (int k = 1; k <= 32; k *= 2) {

@@ -17,12 +17,12 @@ TEST(Stone, SizeNumbersGiveTheTabulatedThickness) {
   std::vector<int> expected_numbers;
   for (const auto& [number, mm] : table) {
     expected_numbers.push_back(number);
-    EXPECT_NEAR(vg::StoneShape::thickness_for_size(number), mm * 1e-3, 1e-15) << number;
-    const vg::StoneShape shape = vg::StoneShape::from_size(number);
+    EXPECT_NEAR(vg::thickness_for_size(number), mm * 1e-3, 1e-15) << number;
+    const vg::LensShape shape = vg::lens_for_size(number);
     EXPECT_NEAR(shape.height(), mm * 1e-3, 1e-15) << number;
     EXPECT_EQ(shape.width(), 0.022) << number;
   }
-  EXPECT_EQ(vg::StoneShape::size_numbers(), expected_numbers);
+  EXPECT_EQ(vg::size_numbers(), expected_numbers);
   // Thicker stones weigh more: mass grows monotonically with the size number.
   double previous = 0.0;
   for (int number : expected_numbers) {

@@ -31,21 +31,21 @@ void expect_refused(const std::string& param, const std::function<void(vg::Stone
 TEST(StoneConfig, DefaultsAreValid) { EXPECT_NO_THROW(vg::validate_config(vg::StoneConfig())); }
 
 TEST(StoneConfig, RateBoundsAreInclusive) {
-  for (double rate : {vg::kMinRate, vg::kMaxRate}) {
+  for (double rate : {vg::kMinRateHz, vg::kMaxRateHz}) {
     vg::StoneConfig config;
-    config.rate = rate;
+    config.rate_hz = rate;
     EXPECT_NO_THROW(vg::validate_config(config)) << rate;
   }
 }
 
 TEST(StoneConfig, AutoResetPeriodMustBeLongerThanAStep) {
   vg::StoneConfig config;
-  config.auto_reset_period = 0.002;  // two steps: one step of motion, then the reset
+  config.auto_reset_period_s = 0.002;  // two steps: one step of motion, then the reset
   EXPECT_NO_THROW(vg::validate_config(config));
-  config.auto_reset_period = 0.0;  // never
+  config.auto_reset_period_s = 0.0;  // never
   EXPECT_NO_THROW(vg::validate_config(config));
   for (double period : {0.0009, 0.001}) {  // would reset at every step
-    config.auto_reset_period = period;
+    config.auto_reset_period_s = period;
     try {
       vg::validate_config(config);
       ADD_FAILURE() << "auto reset period " << period << " accepted with dt 0.001";
@@ -75,18 +75,18 @@ TEST(StoneConfig, DtMustBeAWholeNumberOfNanoseconds) {
 }
 
 TEST(StoneConfig, EachBadParameterIsNamed) {
-  expect_refused("rate", [](vg::StoneConfig& c) { c.rate = 0.0; });
-  expect_refused("rate", [](vg::StoneConfig& c) { c.rate = kNaN; });
+  expect_refused("rate", [](vg::StoneConfig& c) { c.rate_hz = 0.0; });
+  expect_refused("rate", [](vg::StoneConfig& c) { c.rate_hz = kNaN; });
   // The timer period 1 / rate: too long for ros::Duration, or rounding to 0 ns (busy loop).
-  expect_refused("rate", [](vg::StoneConfig& c) { c.rate = 1e-12; });
-  expect_refused("rate", [](vg::StoneConfig& c) { c.rate = 0.0009; });
-  expect_refused("rate", [](vg::StoneConfig& c) { c.rate = 10001.0; });
-  expect_refused("rate", [](vg::StoneConfig& c) { c.rate = 1e12; });
-  expect_refused("rate", [](vg::StoneConfig& c) { c.rate = kInf; });
-  expect_refused("dt", [](vg::StoneConfig& c) { c.dt = 1.0 / 3000.0; });
+  expect_refused("rate", [](vg::StoneConfig& c) { c.rate_hz = 1e-12; });
+  expect_refused("rate", [](vg::StoneConfig& c) { c.rate_hz = 0.0009; });
+  expect_refused("rate", [](vg::StoneConfig& c) { c.rate_hz = 10001.0; });
+  expect_refused("rate", [](vg::StoneConfig& c) { c.rate_hz = 1e12; });
+  expect_refused("rate", [](vg::StoneConfig& c) { c.rate_hz = kInf; });
+  expect_refused("dt", [](vg::StoneConfig& c) { c.dt_s = 1.0 / 3000.0; });
   expect_refused("model", [](vg::StoneConfig& c) { c.model = "newtonian"; });
   expect_refused("integrator", [](vg::StoneConfig& c) { c.integrator = "verlet"; });
-  expect_refused("gravity", [](vg::StoneConfig& c) { c.gravity.x() = kInf; });
+  expect_refused("gravity", [](vg::StoneConfig& c) { c.gravity_world.x() = kInf; });
   expect_refused("stone/size", [](vg::StoneConfig& c) { c.stone.size_number = 29; });
   expect_refused("stone/width", [](vg::StoneConfig& c) { c.stone.width = -0.022; });
   expect_refused("stone/height", [](vg::StoneConfig& c) { c.stone.height = 0.0; });
@@ -118,13 +118,13 @@ TEST(StoneConfig, EachBadParameterIsNamed) {
   expect_refused("stone/density", [](vg::StoneConfig& c) { c.stone.density = 1e-320; });
   expect_refused("stone/color", [](vg::StoneConfig& c) { c.color = "green"; });
   expect_refused("max_angular_velocity", [](vg::StoneConfig& c) { c.max_angular_velocity = -1; });
-  expect_refused("auto_reset_period", [](vg::StoneConfig& c) { c.auto_reset_period = -0.5; });
-  expect_refused("auto_reset_period", [](vg::StoneConfig& c) { c.auto_reset_period = kInf; });
+  expect_refused("auto_reset_period", [](vg::StoneConfig& c) { c.auto_reset_period_s = -0.5; });
+  expect_refused("auto_reset_period", [](vg::StoneConfig& c) { c.auto_reset_period_s = kInf; });
   // Shorter than a step: the stone would be reset at every step.
-  expect_refused("auto_reset_period", [](vg::StoneConfig& c) { c.auto_reset_period = 0.0005; });
+  expect_refused("auto_reset_period", [](vg::StoneConfig& c) { c.auto_reset_period_s = 0.0005; });
   expect_refused("auto_reset_period", [](vg::StoneConfig& c) {
-    c.dt = 0.01;
-    c.auto_reset_period = 0.009;
+    c.dt_s = 0.01;
+    c.auto_reset_period_s = 0.009;
   });
   expect_refused("world_frame", [](vg::StoneConfig& c) { c.world_frame = ""; });
   expect_refused("stone_frame", [](vg::StoneConfig& c) { c.stone_frame = "/stone"; });

@@ -19,10 +19,10 @@ constexpr std::int64_t kMs = 1000000;
 
 vg::StoneConfig spinning_toss() {
   vg::StoneConfig c;
-  c.initial_position = Eigen::Vector3d(0.0, 0.0, 0.02);
-  c.initial_orientation = Eigen::Vector4d(0.2588190, 0.0, 0.0, 0.9659258);
-  c.initial_velocity = Eigen::Vector3d(0.1, 0.0, 1.0);
-  c.initial_angular_velocity = Eigen::Vector3d(7.0, -3.0, 45.0);  // off axis: wobbles
+  c.initial_position_world = Eigen::Vector3d(0.0, 0.0, 0.02);
+  c.initial_orientation_xyzw = Eigen::Vector4d(0.2588190, 0.0, 0.0, 0.9659258);
+  c.initial_velocity_world = Eigen::Vector3d(0.1, 0.0, 1.0);
+  c.initial_angular_velocity_world = Eigen::Vector3d(7.0, -3.0, 45.0);  // off axis: wobbles
   return c;
 }
 
@@ -128,7 +128,7 @@ TEST(StoneSimulation, ChangesAtOneStepMakeOneEvent) {
 
   // A change due at the step of an auto reset joins its event too.
   vg::StoneConfig c = spinning_toss();
-  c.auto_reset_period = 0.05;
+  c.auto_reset_period_s = 0.05;
   vg::StoneSimulation auto_sim(c);
   auto_sim.update(kStart);
   auto_sim.update(kStart + 49 * kMs);
@@ -173,7 +173,7 @@ TEST(StoneSimulation, BadRequestsChangeNothing) {
 
 TEST(StoneSimulation, AutoResetRestartsTheSegmentOnTime) {
   vg::StoneConfig c = spinning_toss();
-  c.auto_reset_period = 0.05;
+  c.auto_reset_period_s = 0.05;
   vg::StoneSimulation sim(c);
   sim.update(kStart);
   vg::UpdateResult r = sim.update(kStart + 120 * kMs);
@@ -208,8 +208,8 @@ TEST(StoneSimulation, TimeJumpsStartANewSegmentAtTheNewTime) {
 
 TEST(StoneSimulation, IntegrationFailureHoldsTheStateAndResetRecovers) {
   vg::StoneConfig c;
-  c.initial_position = Eigen::Vector3d(1.79e308, 0, 0);
-  c.initial_velocity = Eigen::Vector3d(1.7e308, 0, 0);  // overflows within a few steps
+  c.initial_position_world = Eigen::Vector3d(1.79e308, 0, 0);
+  c.initial_velocity_world = Eigen::Vector3d(1.7e308, 0, 0);  // overflows within a few steps
   vg::StoneSimulation sim(c);
   sim.update(kStart);
   const vg::UpdateResult r = sim.update(kStart + 100 * kMs);
@@ -226,8 +226,8 @@ TEST(StoneSimulation, IntegrationFailureHoldsTheStateAndResetRecovers) {
 
 TEST(StoneSimulation, PersistentIntegrationFailurePublishesNothingUntilRecovered) {
   vg::StoneConfig c;
-  c.initial_position = Eigen::Vector3d(1.79e308, 0, 0);
-  c.initial_velocity = Eigen::Vector3d(1.7e308, 0, 0);
+  c.initial_position_world = Eigen::Vector3d(1.79e308, 0, 0);
+  c.initial_velocity_world = Eigen::Vector3d(1.7e308, 0, 0);
   vg::StoneSimulation sim(c);
   sim.update(kStart);
   EXPECT_FALSE(sim.update(kStart + 100 * kMs).error.empty());
@@ -256,7 +256,7 @@ TEST(StoneSimulation, PersistentIntegrationFailurePublishesNothingUntilRecovered
 
 TEST(StoneSimulation, InvalidInitialStateNamesTheParameter) {
   vg::StoneConfig c;
-  c.initial_orientation = Eigen::Vector4d::Zero();
+  c.initial_orientation_xyzw = Eigen::Vector4d::Zero();
   try {
     vg::StoneSimulation sim(c);
     ADD_FAILURE() << "zero quaternion accepted";
@@ -264,6 +264,6 @@ TEST(StoneSimulation, InvalidInitialStateNamesTheParameter) {
     EXPECT_EQ(std::string(e.what()).rfind("~initial/orientation", 0), 0u) << e.what();
   }
   c = vg::StoneConfig();
-  c.initial_angular_velocity = Eigen::Vector3d(0, 0, 600);
+  c.initial_angular_velocity_world = Eigen::Vector3d(0, 0, 600);
   EXPECT_THROW(vg::StoneSimulation{c}, vg::ConfigError);
 }

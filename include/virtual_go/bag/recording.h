@@ -27,14 +27,14 @@ struct RecordingInfo {
   std::int64_t stamp_ns = 0;
   std::string world_frame = "world";
   std::string stone_frame = "stone";
-  double mass = 0.0;                                            // kg
-  Eigen::Vector3d principal_moments = Eigen::Vector3d::Zero();  // kg m^2, body x, y, z
-  std::string model;                                            // constant_omega | rigid_body
-  std::string integrator;                                       // euler | rk4 | splitting | exact
-  double dt = 0.0;                                              // s
+  double mass = 0.0;                                                 // kg
+  Eigen::Vector3d principal_moments_body = Eigen::Vector3d::Zero();  // kg m^2, body x, y, z
+  std::string model;       // a motion model name (body/motion_model.h)
+  std::string integrator;  // an integrator name (flight/integrator_registry.h)
+  double dt_s = 0.0;
   std::int64_t dt_ns = 0;
-  double rate = 0.0;  // Hz
-  Eigen::Vector3d gravity = Eigen::Vector3d::Zero();
+  double rate_hz = 0.0;
+  Eigen::Vector3d gravity_world = Eigen::Vector3d::Zero();  // m/s^2
 };
 
 // One nav_msgs/Odometry as recorded: pose in the world, twist in the stone (body) frame.

@@ -1,18 +1,17 @@
 // The limits bag_report --strict holds a recording to, and the checks against them.
 //
 // Physics bounds depend on the integrator named in ~info, its step h = dt, the segment's
-// largest angular speed w and its duration T. The order p and the constants K_q, K_E, K_g per
-// integrator are integrator_bounds() (src/bag_report_thresholds.cpp; --help prints them):
+// largest angular speed w and its duration T. The order p and the constants K_q, K_E, K_g are the
+// integrator's entry in the registry (flight/integrator_registry.h; --help prints them):
 //   orientation error  <= floor rad + K_q (h w)^p w T     (global error of an order-p method)
 //   energy drift       <= floor + K_E (h w)^p (1 + w T)
 //   momentum drift     <= floor (every core integrator keeps L_world as primary state)
 //   position error     <= floor m + round-off |x|max + K_g |g| h T / 2
 //                         (translation is exact in closed form except for the article's Euler)
 //   | |q| - 1 |        <= floor
-// floor = kBoundFloor, round-off = kPositionRoundOff. exact has K = 0, so the floor is issue 3's
-// promise for it. K_q and K_E are about 4-10x the worst value measured for the default stone
-// (rigid_body and constant_omega, |w| 2..45 rad/s, h 1..5 ms, random axes, 5 s). Every bound
-// can be replaced from the command line.
+// floor = kBoundFloor, round-off = kPositionRoundOff. exact has K = 0, so the floor is the
+// package's promise for it (docs/physics.md, "Error bounds"). Every bound can be replaced from
+// the command line.
 #pragma once
 
 #include <cstdint>
@@ -30,20 +29,7 @@ namespace bag {
 constexpr double kBoundFloor = 1e-9;         // round-off allowance of every figure
 constexpr double kPositionRoundOff = 1e-12;  // per m of the segment's largest |x|
 
-// The error model of one integrator, as used in physics_bounds() (see the top of this file).
-struct IntegratorBound {
-  std::string integrator;  // as in ~info and virtual_go::integrator_names()
-  int order = 0;           // p; 0 for exact
-  double k_orientation = 0.0;
-  double k_energy = 0.0;
-  double k_gravity = 0.0;
-};
-
-// The constants themselves, one entry per integrator with a default bound.
-const std::vector<IntegratorBound>& integrator_bounds();
-// nullptr when the integrator has no default bound.
-const IntegratorBound* integrator_bound(const std::string& integrator);
-// The "default limits" section of --help, generated from the constants above.
+// The "default limits" section of --help, generated from the registry's constants.
 std::string default_limits_text();
 
 struct LimitOverrides {
@@ -65,9 +51,9 @@ struct PhysicsBounds {
   std::string basis;  // how the bounds were obtained, for the report
 };
 
-// Throws InvalidArgument for an integrator name it has no bound for (unless every physics
+// Throws InvalidArgument for an integrator name the registry does not know (unless every physics
 // bound is overridden).
-PhysicsBounds physics_bounds(const std::string& integrator, double dt, const SegmentResult& segment,
+PhysicsBounds physics_bounds(const std::string& integrator, double dt_s, const SegmentResult& segment,
                              double gravity_norm, const LimitOverrides& overrides);
 
 struct Check {

@@ -13,9 +13,9 @@ class MassProperties {
   MassProperties(double mass, const Eigen::Vector3d& principal_moments_body);
 
   // Solid lens of uniform density (kg/m^3), closed form.
-  static MassProperties of_lens(const StoneShape& shape, double density);
+  static MassProperties of_lens(const LensShape& shape, double density);
   // Solid lens with the given total mass (overrides density).
-  static MassProperties of_lens_with_mass(const StoneShape& shape, double mass);
+  static MassProperties of_lens_with_mass(const LensShape& shape, double mass);
 
   double mass() const { return mass_; }
   const Eigen::Vector3d& principal_moments_body() const { return moments_body_; }

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "virtual_go/body/mass_properties.h"
+#include "virtual_go/common/name_table.h"
 #include "virtual_go/body/rigid_body_state.h"
 
 namespace virtual_go {
@@ -19,7 +20,13 @@ enum class MotionModelKind {
   rigid_body,
 };
 
-MotionModelKind motion_model_from_name(const std::string& name);  // throws InvalidArgument
+struct MotionModelInfo {
+  std::string name;  // "constant_omega", "rigid_body"
+  MotionModelKind kind;
+};
+// The models by name; an unknown name is an InvalidArgument (field "motion model").
+const NameTable<MotionModelInfo>& motion_models();
+MotionModelKind motion_model_from_name(const std::string& name);
 std::string motion_model_name(MotionModelKind kind);
 
 class MotionModel {

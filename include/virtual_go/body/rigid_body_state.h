@@ -11,10 +11,15 @@ struct RigidBodyState {
   Eigen::Vector3d velocity_world = Eigen::Vector3d::Zero();          // m/s
   Eigen::Vector3d angular_momentum_world = Eigen::Vector3d::Zero();  // kg m^2/s, primary
 
-  // Throws InvalidArgument naming the field for non-finite values or a zero quaternion;
-  // returns a copy with the orientation normalised.
+  // Throws InvalidArgument naming the field ("position", "orientation", "velocity", "angular
+  // momentum") for non-finite values or a zero quaternion; returns a copy with the orientation
+  // normalised.
   RigidBodyState validated() const;
-  bool operator==(const RigidBodyState& other) const;  // bitwise-equal components
+  // Bitwise equality of the 13 numbers: "is this the very state, untouched?". Unlike a numeric
+  // comparison it tells -0 from 0 and finds a NaN equal to the same NaN, so a state holding NaN
+  // that was left alone compares equal to its copy.
+  bool operator==(const RigidBodyState& other) const;
+  bool operator!=(const RigidBodyState& other) const { return !(*this == other); }
 };
 
 }  // namespace virtual_go

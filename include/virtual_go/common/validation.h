@@ -1,16 +1,26 @@
-// Input checks shared by the core: every rejection names the field and the value.
+// Input checks shared by the core: every rejection names its field and the offending value.
 #pragma once
 
 #include <Eigen/Geometry>
 #include <stdexcept>
 #include <string>
 
+#include "virtual_go/common/formatting.h"
+
 namespace virtual_go {
 
-// Thrown for bad input; what() names the field and the offending value.
+// Thrown for bad input. field() names the input that was wrong as the throwing function's caller
+// knows it ("dt", "orientation", "width"), so a caller can map it to its own names (a ROS
+// parameter, a service field) without reading the message; what() is the sentence for people,
+// naming the field and the value.
 class InvalidArgument : public std::invalid_argument {
  public:
-  using std::invalid_argument::invalid_argument;
+  InvalidArgument(std::string field, const std::string& message)
+      : std::invalid_argument(message), field_(std::move(field)) {}
+  const std::string& field() const noexcept { return field_; }
+
+ private:
+  std::string field_;
 };
 
 // Thrown when an integrator cannot keep up (for instance h * |omega| too large for euler or rk4)
@@ -20,9 +30,7 @@ class IntegrationError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-std::string format_value(double value);
-std::string format_vector(const Eigen::Vector3d& v);
-
+// Each throws InvalidArgument with `field` as field() and at the start of the message.
 void require_finite(const std::string& field, double value);
 void require_finite(const std::string& field, const Eigen::Vector3d& v);
 void require_positive(const std::string& field, double value);

@@ -9,11 +9,9 @@ namespace virtual_go {
 class EulerIntegrator : public Integrator {
  public:
   using Integrator::Integrator;
-  std::string name() const override { return "euler"; }
-  double max_rotation_per_step() const override { return 1.0; }
 
  protected:
-  void step(RigidBodyState& state, double dt) override;
+  void step(RigidBodyState& state, double dt_s, FlightCache& cache) const override;
 };
 
 }  // namespace virtual_go

@@ -8,11 +8,9 @@ namespace virtual_go {
 class Rk4Integrator : public Integrator {
  public:
   using Integrator::Integrator;
-  std::string name() const override { return "rk4"; }
-  double max_rotation_per_step() const override { return 1.0; }
 
  protected:
-  void step(RigidBodyState& state, double dt) override;
+  void step(RigidBodyState& state, double dt_s, FlightCache& cache) const override;
 };
 
 }  // namespace virtual_go

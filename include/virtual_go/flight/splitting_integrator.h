@@ -10,10 +10,9 @@ namespace virtual_go {
 class SplittingIntegrator : public Integrator {
  public:
   using Integrator::Integrator;
-  std::string name() const override { return "splitting"; }
 
  protected:
-  void step(RigidBodyState& state, double dt) override;
+  void step(RigidBodyState& state, double dt_s, FlightCache& cache) const override;
 };
 
 }  // namespace virtual_go

@@ -16,7 +16,8 @@ struct TriangleMesh {
   double enclosed_volume() const;  // divergence theorem; exact for the polyhedron
 };
 
-// `segments` around the rim (>= 3), `rings` from the rim to each pole (>= 1).
-TriangleMesh tessellate_lens(const StoneShape& shape, int segments, int rings);
+// `segments` around the rim (>= 3), `rings` from the rim to each pole (>= 1); InvalidArgument
+// with field "segments" or "rings" otherwise.
+TriangleMesh tessellate_lens(const LensShape& shape, int segments, int rings);
 
 }  // namespace virtual_go

@@ -1,4 +1,4 @@
-// A stone as configured by a user: size, material, optional overrides -> shape and mass.
+// A Go stone as configured by a user: size, material, optional overrides -> shape and mass.
 #pragma once
 
 #include <optional>
@@ -6,6 +6,8 @@
 
 #include "virtual_go/body/mass_properties.h"
 #include "virtual_go/geometry/lens_shape.h"
+#include "virtual_go/go/stone_materials.h"
+#include "virtual_go/go/stone_sizes.h"
 
 namespace virtual_go {
 
@@ -19,12 +21,16 @@ struct StoneSpec {
 };
 
 struct Stone {
-  StoneShape shape;
+  LensShape shape;
   MassProperties mass_properties;
   double density;  // kg/m^3, the effective uniform density
 };
 
-// Default height when neither size nor height is given: size 33 (9.2 mm).
+// Default height when neither size nor height is given: size kDefaultSizeNumber. Checks every
+// given field, also one that a later override makes unused. Throws InvalidArgument whose
+// field() is the StoneSpec member to blame: "size_number", "width", "height", "material",
+// "density" or "mass" (a derived mass or inertia that underflows blames the override that set
+// it, else the dimensions).
 Stone make_stone(const StoneSpec& spec);
 
 }  // namespace virtual_go

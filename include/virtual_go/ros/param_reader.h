@@ -1,5 +1,6 @@
-// Reads the node's private parameters into a StoneConfig. Absent parameters keep their
-// defaults; a parameter of the wrong type or length throws ConfigError naming it.
+// Reads the node's private parameters (the table in sim/stone_parameters.h) into a StoneConfig.
+// Absent parameters keep their defaults; a parameter of the wrong type or length throws
+// ConfigError naming it.
 #pragma once
 
 #include <ros/node_handle.h>
@@ -7,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "virtual_go/sim/stone_config.h"
+#include "virtual_go/sim/stone_parameters.h"
 
 namespace virtual_go {
 

@@ -15,9 +15,6 @@
 
 namespace virtual_go {
 
-// The --help text of stone_node: usage, parameters, topics, services.
-const char* stone_node_help();
-
 class StoneNode {
  public:
   // Reads ~ parameters; throws ConfigError naming the bad parameter.

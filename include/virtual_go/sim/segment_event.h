@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "virtual_go/body/rigid_body_state.h"
 
@@ -12,6 +13,8 @@ namespace virtual_go {
 enum class EventReason { start, reset, auto_reset, set_state, set_angular_velocity, time_jump };
 
 std::string event_reason_name(EventReason reason);
+// All reasons' names, in the order of the enum.
+std::vector<std::string> event_reason_names();
 
 struct SegmentEvent {
   std::int64_t stamp_ns = 0;  // simulated time of the segment's first state

@@ -1,6 +1,6 @@
 // Validation of state changes requested from outside the physics (service calls and the
-// initial state parameters). Each rejection throws InvalidArgument naming the request field,
-// so bad input never reaches the state.
+// initial state parameters). Each rejection throws InvalidArgument whose field() is the request
+// field as the caller named it, so bad input never reaches the state.
 #pragma once
 
 #include <Eigen/Geometry>
@@ -17,7 +17,7 @@ namespace virtual_go {
 struct AngularVelocityLimit {
   double max_angular_velocity;   // rad/s, the ~max_angular_velocity parameter
   double max_rotation_per_step;  // rad, the integrator's limit (may be infinity)
-  double dt;                     // s
+  double dt_s;                   // s
   std::string integrator;        // for the message
 };
 

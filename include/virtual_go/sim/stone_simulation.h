@@ -1,6 +1,6 @@
-// The stone node without ROS: parameters -> core objects, a simulated clock on a fixed grid of
-// whole nanoseconds, and the changes requested from outside. The node calls update() with ROS
-// time on every timer tick and publishes what it returns.
+// The stone node without ROS: a checked configuration -> core objects, a simulated clock on a
+// fixed grid of whole nanoseconds, and the changes requested from outside. The node calls
+// update() with ROS time on every timer tick and publishes what it returns.
 #pragma once
 
 #include <cstdint>
@@ -9,13 +9,14 @@
 #include <string>
 #include <vector>
 
-#include "virtual_go/flight/integrator.h"
 #include "virtual_go/body/rigid_body.h"
+#include "virtual_go/flight/flight_cache.h"
+#include "virtual_go/flight/integrator.h"
+#include "virtual_go/go/stone.h"
 #include "virtual_go/sim/segment_event.h"
 #include "virtual_go/sim/sim_clock.h"
 #include "virtual_go/sim/state_request.h"
 #include "virtual_go/sim/stone_config.h"
-#include "virtual_go/go/stone.h"
 
 namespace virtual_go {
 
@@ -32,6 +33,7 @@ class StoneSimulation {
  public:
   // Throws ConfigError naming the parameter.
   explicit StoneSimulation(const StoneConfig& config);
+  explicit StoneSimulation(CheckedConfig checked);
 
   // Advances to the latest grid time at or before ROS time now_ns (0 = not valid yet).
   UpdateResult update(std::int64_t now_ns);
@@ -48,17 +50,19 @@ class StoneSimulation {
                  const Eigen::Vector3d& velocity_world,
                  const Eigen::Vector3d& angular_velocity_world);
 
-  const StoneConfig& config() const { return config_; }
-  const Stone& stone() const { return stone_; }
-  const MotionSetup& setup() const { return setup_; }
+  const StoneConfig& config() const { return checked_.config; }
+  const Stone& stone() const { return checked_.stone; }
+  const MotionSetup& setup() const { return checked_.setup; }
   const Integrator& integrator() const { return *integrator_; }
-  std::int64_t dt_ns() const { return clock_.dt_ns(); }
-  const RigidBodyState& initial_state() const { return initial_; }
+  std::int64_t dt_ns() const { return checked_.dt_ns; }
+  // s, as the integrator sees it: from the whole nanoseconds, not the ~dt parameter.
+  double dt_s() const { return checked_.dt_s; }
+  const RigidBodyState& initial_state() const { return checked_.initial_state; }
   // Simulated time of the initial state (the first valid ROS time seen); 0 before.
   std::int64_t start_ns() const { return start_ns_; }
   bool started() const { return clock_.started(); }
   const RigidBodyState& state() const { return state_; }
-  RigidBody body() const { return RigidBody(setup_.model, state_); }
+  RigidBody body() const { return RigidBody(checked_.setup.model, state_); }
   std::int64_t time_ns() const { return clock_.time_ns(); }
 
  private:
@@ -71,19 +75,15 @@ class StoneSimulation {
   };
 
   void step(UpdateResult& result);
+  // The state was replaced from outside the integration: a new segment's first state.
+  void replace_state(const RigidBodyState& state);
   void begin_segment(EventReason reason, std::int64_t stamp_ns, UpdateResult& result);
-  AngularVelocityLimit angular_velocity_limit() const;
-  // s, as the integrator sees it: from the clock's whole nanoseconds, not the ~dt parameter.
-  double dt() const { return static_cast<double>(clock_.dt_ns()) * 1e-9; }
 
-  StoneConfig config_;
-  Stone stone_;
-  MotionSetup setup_;
+  CheckedConfig checked_;
   std::unique_ptr<Integrator> integrator_;
-  std::int64_t auto_reset_ns_;
-  RigidBodyState initial_;
   SimClock clock_;
   RigidBodyState state_;
+  FlightCache flight_cache_;  // the stone's: what the integrator carries between its steps
   std::int64_t start_ns_ = 0;
   std::int64_t segment_start_ns_ = 0;
   std::uint32_t segment_ = 0;

@@ -1,0 +1,115 @@
+#include "virtual_go/sim/stone_parameters.h"
+
+#include <type_traits>
+
+#include "virtual_go/common/formatting.h"
+#include "virtual_go/common/sim_time.h"
+#include "virtual_go/flight/integrator_registry.h"
+#include "virtual_go/go/stone.h"
+
+namespace virtual_go {
+namespace {
+
+// "a, b or c"
+std::string one_of(const std::vector<std::string>& names) {
+  if (names.size() < 2) return join(names, "");
+  const std::vector<std::string> head(names.begin(), names.end() - 1);
+  return join(head, ", ") + " or " + names.back();
+}
+
+// The size numbers with runs contracted: "22, 25, 28, 30-40".
+std::string size_number_text() {
+  const std::vector<int> sizes = size_numbers();
+  std::vector<std::string> parts;
+  for (std::size_t i = 0; i < sizes.size();) {
+    std::size_t j = i;
+    while (j + 1 < sizes.size() && sizes[j + 1] == sizes[j] + 1) ++j;
+    parts.push_back(j - i >= 2 ? std::to_string(sizes[i]) + "-" + std::to_string(sizes[j])
+                               : std::to_string(sizes[i]));
+    if (j - i == 1) parts.push_back(std::to_string(sizes[j]));
+    i = j + 1;
+  }
+  return join(parts, ", ");
+}
+
+template <int N>
+std::string list_text(const Eigen::Matrix<double, N, 1>& v) {
+  std::vector<std::string> parts;
+  for (int i = 0; i < N; ++i) parts.push_back(format_value(v[i]));
+  return "[" + join(parts, ", ") + "]";
+}
+
+std::string value_text(const double* v) { return format_value(*v); }
+std::string value_text(const std::optional<double>* v) { return *v ? format_value(**v) : ""; }
+std::string value_text(const std::optional<int>* v) { return *v ? std::to_string(**v) : ""; }
+std::string value_text(const std::string* v) { return *v; }
+std::string value_text(const Eigen::Vector3d* v) { return list_text(*v); }
+std::string value_text(const Eigen::Vector4d* v) { return list_text(*v); }
+
+}  // namespace
+
+std::vector<BoundParameter> bind_parameters(StoneConfig& c) {
+  // The default of ~stone/size is make_stone's: the field itself is unset by default.
+  const std::string default_size = std::to_string(kDefaultSizeNumber) + " = " +
+                                   format_value(thickness_for_size(kDefaultSizeNumber) * 1e3) +
+                                   " mm";
+  return {
+      {{"rate", "Hz", "",
+        "publish rate, " + format_value(kMinRateHz) + " to " + format_value(kMaxRateHz)},
+       &c.rate_hz},
+      {{"dt", "s", "",
+        "physics step, a whole number of nanoseconds, at least " + std::to_string(kMinDtNs) +
+            " ns"},
+       &c.dt_s},
+      {{"model", "", "", one_of(motion_models().names())}, &c.model},
+      {{"integrator", "", "", one_of(integrator_names())}, &c.integrator},
+      {{"gravity", "m/s^2", "", "[x, y, z], world frame"}, &c.gravity_world},
+      {{"stone/size", "", default_size,
+        "Japanese size number " + size_number_text() + "; sets the height"},
+       &c.stone.size_number},
+      {{"stone/width", "m", "", "lens diameter"}, &c.stone.width},
+      {{"stone/height", "m", "", "lens thickness; overrides ~stone/size"}, &c.stone.height},
+      {{"stone/material", "", "", one_of(material_names()) + "; sets the density"},
+       &c.stone.material},
+      {{"stone/density", "kg/m^3", "", "overrides the material"}, &c.stone.density},
+      {{"stone/mass", "kg", "", "overrides density and material"}, &c.stone.mass},
+      {{"stone/color", "", "", one_of(stone_colors()) + " (the marker)"}, &c.color},
+      {{"initial/position", "m", "", "[x, y, z], world frame"}, &c.initial_position_world},
+      {{"initial/orientation", "", "", "[x, y, z, w], body -> world, normalised"},
+       &c.initial_orientation_xyzw},
+      {{"initial/velocity", "m/s", "", "[x, y, z], world frame"}, &c.initial_velocity_world},
+      {{"initial/angular_velocity", "rad/s", "", "[x, y, z], world frame"},
+       &c.initial_angular_velocity_world},
+      {{"max_angular_velocity", "rad/s", "", "larger requests (and initial values) are refused"},
+       &c.max_angular_velocity},
+      {{"auto_reset_period", "s", "",
+        "reset when a segment is this old; 0 = never, else longer than ~dt"},
+       &c.auto_reset_period_s},
+      {{"world_frame", "", "", "tf frame of the world"}, &c.world_frame},
+      {{"stone_frame", "", "", "tf frame of the stone (its body frame)"}, &c.stone_frame},
+  };
+}
+
+const std::vector<ParameterInfo>& stone_parameters() {
+  static const std::vector<ParameterInfo> parameters = [] {
+    StoneConfig defaults;
+    std::vector<ParameterInfo> out;
+    for (BoundParameter& p : bind_parameters(defaults)) {
+      if (p.info.default_text.empty()) {
+        p.info.default_text = std::visit([](auto* field) { return value_text(field); }, p.field);
+      }
+      out.push_back(p.info);
+    }
+    return out;
+  }();
+  return parameters;
+}
+
+const ParameterInfo* find_parameter(const std::string& name) {
+  for (const ParameterInfo& p : stone_parameters()) {
+    if (p.name == name) return &p;
+  }
+  return nullptr;
+}
+
+}  // namespace virtual_go
