@@ -2,11 +2,16 @@
 # Included by CMakeLists.txt inside if(CATKIN_ENABLE_TESTING).
 foreach(core_test
     common/test_bad_input
+    common/test_name_table
+    common/test_sim_time
     geometry/test_rotation
     geometry/test_tessellation
     body/test_mass_properties
+    body/test_rigid_body_state
     body/test_rigid_body
     go/test_stone
+    flight/test_integrator_registry
+    flight/test_flight_cache
     flight/test_free_fall
     flight/test_torque_free_motion
     flight/test_conservation
@@ -15,4 +20,6 @@ foreach(core_test
   get_filename_component(target ${core_test} NAME)
   catkin_add_gtest(${target} test/${core_test}.cpp)
   target_link_libraries(${target} virtual_go_core GTest::gtest_main)
+  # Tests that hold README.md's tables to the code read it from the source tree.
+  target_compile_definitions(${target} PRIVATE VG_README="${PROJECT_SOURCE_DIR}/README.md")
 endforeach()

@@ -4,9 +4,12 @@
 catkin_add_gtest(node_adapter_test
   test/sim/test_sim_clock.cpp
   test/sim/test_stone_config.cpp
+  test/sim/test_stone_parameters.cpp
   test/sim/test_state_request.cpp
   test/sim/test_stone_simulation.cpp)
 target_link_libraries(node_adapter_test virtual_go_sim GTest::gtest_main)
+# Checks README.md's parameter table against the code.
+target_compile_definitions(node_adapter_test PRIVATE VG_README="${PROJECT_SOURCE_DIR}/README.md")
 
 # The node with a real master (rostest). One gtest binary holds every suite; each .test file
 # starts the node with its config and picks a suite with --gtest_filter.

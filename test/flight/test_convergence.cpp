@@ -89,6 +89,8 @@ TEST(Convergence, MeasuredOrdersOnATumblingStone) {
     const double order = vgtest::fitted_order(dts, errors);
     std::printf("%-9s fitted order %.3f (expected %.0f)\n", c.name.c_str(), order, c.order);
     EXPECT_NEAR(order, c.order, 0.15) << c.name;
+    // The registry states the order bag_report bounds recordings with: it is the measured one.
+    EXPECT_EQ(vg::integrators().at(c.name).order, c.order) << c.name;
     // Each single halving shows the order too, not just the fit.
     for (size_t k = 1; k < errors.size(); ++k) {
       EXPECT_NEAR(std::log2(errors[k - 1] / errors[k]), c.order, 0.3) << c.name << " k " << k;
@@ -128,6 +130,7 @@ TEST(Convergence, ExactStaysBelowPicoradianForEveryStepFromOneSecondToOneMicrose
   const vgtest::AxisymmetricTop top{kStoneInertia.x(), kStoneInertia.z(),
                                     vgtest::from_eigen(s0.orientation), s0.angular_momentum_world};
   const Quat q_ref = top.orientation_at(1.0);
+  EXPECT_EQ(vg::integrators().at("exact").order, 0) << "the registry's mark of no truncation error";
   for (double dt = 1.0; dt >= 0.99e-6; dt /= 10) {
     const RunResult r = run_to("exact", setup, s0, dt, 1.0, q_ref);
     std::printf(

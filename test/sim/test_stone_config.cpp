@@ -1,5 +1,6 @@
 // Parameter validation: every bad parameter is refused with its name in the message.
 #include "virtual_go/sim/stone_config.h"
+#include "virtual_go/sim/stone_parameters.h"
 
 #include <gtest/gtest.h>
 
@@ -23,6 +24,9 @@ void expect_refused(const std::string& param, const std::function<void(vg::Stone
     ADD_FAILURE() << "~" << param << " was accepted";
   } catch (const vg::ConfigError& e) {
     EXPECT_EQ(std::string(e.what()).rfind("~" + param + ":", 0), 0u) << e.what();
+    // The field, for callers, without reading the message; a parameter of the table.
+    EXPECT_EQ(e.field(), "~" + param) << e.what();
+    EXPECT_NE(vg::find_parameter(param), nullptr) << param;
   }
 }
 
