@@ -152,7 +152,7 @@ exp((0.3, -0.5, 0.7)), for T = 10 s. Scenarios:
   trace(I)/3, which is exactly that motion (w constant, L = I_iso w).
 
 Step sizes: 1/30 s, 1/60 s and 2^-5 ... 2^-16 s. Per method and step size, every step is
-compared with the closed form (`ExactMotion::state_at`, DESIGN.md): orientation error
+compared with the closed form (`ExactMotion::state_at`, docs/physics.md): orientation error
 (geodesic angle) at T and its maximum over the run, position error at T, relative error of the
 total energy E = 1/2 w.L + 1/2 m v^2 - m g.x and of the rotational energy alone (for the
 peers L = R I R^T w from their state), relative error of the world angular momentum. Time:

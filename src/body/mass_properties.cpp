@@ -19,7 +19,7 @@ MassProperties MassProperties::of_lens(const LensShape& shape, double density) {
   const double a = shape.half_width(), c = shape.half_height();
   const double a2 = a * a, c2 = c * c;
   const double mass = density * shape.volume();
-  // Closed forms (DESIGN.md): axial I3 and transverse I1 of a biconvex lens.
+  // Closed forms (docs/physics.md, "The lens"): axial I3 and transverse I1 of a biconvex lens.
   const double i3 = M_PI * density * c * (10 * a2 * a2 + 5 * a2 * c2 + c2 * c2) / 30;
   const double i1 = M_PI * density * c * (10 * a2 * a2 + 15 * a2 * c2 + 7 * c2 * c2) / 60;
   return MassProperties(mass, Eigen::Vector3d(i1, i1, i3));

@@ -1,6 +1,6 @@
 // Mass properties of the biconvex lens: the closed forms against an independent numeric
 // integration (two ways: disc slices along z and cylindrical shells), the sphere and thin-disc
-// limits, and the worked example in DESIGN.md.
+// limits, and the worked example in docs/physics.md ("The lens").
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -1,5 +1,5 @@
 // The article's constant_omega model: world angular velocity constant, so
-// q(t) = exp(t omega) q0 (DESIGN.md). exact and splitting take that rotation in closed form;
+// q(t) = exp(t omega) q0 (docs/physics.md). exact and splitting take that rotation in closed form;
 // euler and rk4 converge to it. With omega fixed, the article's euler step
 // q <- normalise((1 + dt omega / 2) q) is an exact turn about the right axis by
 // 2 atan(|omega| dt / 2) instead of |omega| dt, so here it is second order with a known error.

@@ -82,9 +82,9 @@ TEST(IntegratorRegistry, StepLimitIsTheRegistrysAndNoOther) {
 
 // README.md restates the registry for readers: same names, orders, step limits and summaries.
 TEST(IntegratorRegistry, ReadmeTableMatchesTheRegistry) {
-  const auto rows = vgtest::readme_table(VG_README, "#### Integrators");
+  const auto rows = vgtest::readme_table(VG_README, "### Integrators");
   const auto& entries = vg::integrators().entries();
-  ASSERT_EQ(rows.size(), entries.size()) << "README.md, \"#### Integrators\"";
+  ASSERT_EQ(rows.size(), entries.size()) << "README.md, \"### Integrators\"";
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const vg::IntegratorInfo& info = entries[i];
     ASSERT_EQ(rows[i].size(), 4u) << info.name;

@@ -1,5 +1,5 @@
 // Torque-free rotation of the axisymmetric stone (rigid_body model): the closed form of
-// DESIGN.md and ExactMotion against an independent RK4 integration of Euler's equations; a spin
+// docs/physics.md and ExactMotion against an independent RK4 integration of Euler's equations; a spin
 // about the symmetry axis stays about it; an off-axis spin precesses at
 // Omega = (I3 - I1) omega3 / I1 in the body and its axis sweeps a cone about L with
 // cos(theta) = I3 omega3 / |L| at |L| / I1 - all measured from the integrated trajectories.
@@ -128,7 +128,7 @@ TEST(TorqueFreeMotion, OffAxisSpinPrecessesAtTheTheoreticalRateOnTheTheoreticalC
   const Eigen::Vector3d inertia = setup.model.mass_properties().principal_moments_body();
   const double i1 = inertia.x(), i3 = inertia.z();
   const Eigen::Vector3d omega_body0(10.0, 0.0, 30.0);
-  // Theory (DESIGN.md).
+  // Theory (docs/physics.md, "Flight in closed form").
   const double omega_body_rate = (i3 - i1) * omega_body0.z() / i1;
   const double l_norm = inertia.cwiseProduct(omega_body0).norm();
   const double cos_cone = i3 * omega_body0.z() / l_norm;

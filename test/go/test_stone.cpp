@@ -1,5 +1,5 @@
 // The stone catalogue: Japanese size numbers -> thickness, materials -> density, and how
-// make_stone combines size, material and the explicit overrides (DESIGN.md "The go stone").
+// make_stone combines size, material and the explicit overrides (docs/physics.md, "Go stones").
 #include <gtest/gtest.h>
 
 #include <map>
@@ -10,7 +10,7 @@
 namespace vg = virtual_go;
 
 TEST(Stone, SizeNumbersGiveTheTabulatedThickness) {
-  // DESIGN.md, in mm.
+  // docs/physics.md, "Go stones", in mm.
   const std::map<int, double> table = {{22, 6.3},  {25, 7.0},  {28, 7.5},  {30, 8.0}, {31, 8.4},
                                        {32, 8.8},  {33, 9.2},  {34, 9.5},  {35, 9.8}, {36, 10.1},
                                        {37, 10.4}, {38, 10.7}, {39, 11.0}, {40, 11.3}};

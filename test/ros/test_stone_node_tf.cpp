@@ -25,7 +25,7 @@ TEST(StoneNodeTf, LatchedTopicsArrive) {
   EXPECT_GT(info.principal_moments.z, info.principal_moments.x);  // flat lens: I3 > I1
   EXPECT_GT(info.header.stamp.toNSec(), 0u);
 
-  // ~info against values written here from test/ros/config/spin*.yaml and DESIGN.md, not from the
+  // ~info against values written here from test/ros/config/spin*.yaml and docs/physics.md, not from the
   // node's own output: ClosedForm::from_info trusts ~info, so a swapped x y z w / w x y z or an
   // ignored parameter would otherwise go unnoticed.
   // The .test file tells which model its YAML sets (spin.yaml: rigid_body,
@@ -49,7 +49,7 @@ TEST(StoneNodeTf, LatchedTopicsArrive) {
   // Round trip w -> L = R I R^T w -> w costs a few ulps.
   EXPECT_LT((vgtest::vec(info.initial_twist.angular) - Eigen::Vector3d(7.0, -3.0, 45.0)).norm(),
             1e-12);
-  // Size 33 slate lens (DESIGN.md "Stone"): a = w / 2, c = h / 2, rho 2700 kg/m^3.
+  // Size 33 slate lens (docs/physics.md, "The lens"): a = w / 2, c = h / 2, rho 2700 kg/m^3.
   const double a = 0.011, c = 0.0046, rho = 2700.0, a2 = a * a, c2 = c * c;
   const double i3 = M_PI * rho * c * (10 * a2 * a2 + 5 * a2 * c2 + c2 * c2) / 30;
   const double i1 = M_PI * rho * c * (10 * a2 * a2 + 15 * a2 * c2 + 7 * c2 * c2) / 60;

@@ -1,4 +1,4 @@
-// Independent closed-form motion for the node tests, written from DESIGN.md ("Motion") and
+// Independent closed-form motion for the node tests, written from docs/physics.md ("Flight in closed form") and
 // filled from the messages the node publishes (StoneInfo, StoneEvent): shares no code with the
 // core. Translation x0 + v0 t + g t^2 / 2; constant_omega q(t) = exp(t w) q0; rigid_body
 // (axisymmetric, I1 = I2) q(t) = exp(t L / I1) q0 exp(-Omega t e_z), Omega = (I3 - I1) w3 / I1.
@@ -30,7 +30,7 @@ inline Eigen::Quaterniond exp_map(const Eigen::Vector3d& v) {
   return Eigen::Quaterniond(Eigen::AngleAxisd(angle, v / angle));
 }
 
-// Sign-insensitive angle between two orientations (DESIGN.md "Measuring error").
+// Sign-insensitive angle between two orientations (docs/physics.md, "Measuring error").
 inline double angle_between(const Eigen::Quaterniond& a, const Eigen::Quaterniond& b) {
   const Eigen::Quaterniond d = a.conjugate() * b.normalized();
   return 2.0 * std::atan2(d.vec().norm(), std::abs(d.w()));

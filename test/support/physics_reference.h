@@ -1,4 +1,4 @@
-// Independent references for the core tests, written from the formulas in DESIGN.md and the
+// Independent references for the core tests, written from the formulas in docs/physics.md and the
 // textbook equations, never by calling the code under test: quaternion algebra on plain
 // 4-vectors, the closed-form torque-free axisymmetric top, and a classical RK4 integration of
 // Euler's equations in the body frame. Tests compare the core against these.
@@ -44,7 +44,7 @@ inline Quat axis_angle(const Eigen::Vector3d& v) {
   return Quat(std::cos(0.5 * angle), s * axis.x(), s * axis.y(), s * axis.z());
 }
 
-// Geodesic angle between orientations (DESIGN.md "Measuring error"), sign-insensitive.
+// Geodesic angle between orientations (docs/physics.md, "Measuring error"), sign-insensitive.
 inline double angle_between(const Quat& p, const Quat& q) {
   const Quat d = qmul(qconj(p), q);
   return 2.0 * std::atan2(d.tail<3>().norm(), std::abs(d[0]));
@@ -53,7 +53,7 @@ inline double angle_between(const Eigen::Quaterniond& p, const Eigen::Quaternion
   return angle_between(from_eigen(p), from_eigen(q));
 }
 
-// Torque-free axisymmetric top (I1 = I2), closed form from DESIGN.md:
+// Torque-free axisymmetric top (I1 = I2), closed form from docs/physics.md ("Flight in closed form"):
 // q(t) = exp(t L / I1) q0 exp(-Omega t e_z), Omega = (I3 - I1) omega3 / I1.
 struct AxisymmetricTop {
   double i1, i3;

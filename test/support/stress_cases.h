@@ -1,5 +1,5 @@
 // Shared set-up of the stress suite: the size-33 slate stone, its tumble, and an independent
-// closed form in long double (DESIGN.md "Exact torque-free motion") to judge long runs by.
+// closed form in long double (docs/physics.md, "Flight in closed form") to judge long runs by.
 #pragma once
 
 #include <Eigen/Geometry>

@@ -32,7 +32,7 @@ struct SyntheticRun {
   double orientation_drift_rate = 0.0;
 };
 
-// The stone of DESIGN.md's example: w 22 mm, h 9 mm, slate.
+// The stone of docs/physics.md's worked example: w 22 mm, h 9 mm, slate.
 constexpr double kMass = 4.876e-3;
 constexpr double kI1 = 1.1835e-7;
 constexpr double kI3 = 2.0239e-7;
