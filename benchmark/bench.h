@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "virtual_go/flight/integrator_registry.h"
 #include "virtual_go/body/rigid_body_state.h"
+#include "virtual_go/flight/integrator_registry.h"
 
 namespace vg_bench {
 

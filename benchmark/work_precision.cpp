@@ -13,12 +13,12 @@
 #include <sstream>
 
 #include "bench.h"
-#include "virtual_go/flight/flight_cache.h"
-#include "virtual_go/flight/exact_motion.h"
 #include "virtual_go/body/rigid_body.h"
+#include "virtual_go/common/validation.h"
+#include "virtual_go/flight/exact_motion.h"
+#include "virtual_go/flight/flight_cache.h"
 #include "virtual_go/geometry/rotation.h"
 #include "virtual_go/go/stone.h"
-#include "virtual_go/common/validation.h"
 
 namespace vg = virtual_go;
 using vg_bench::Method;

@@ -1,3 +1,5 @@
+#include "virtual_go/bag/bag_reader.h"
+
 #include <console_bridge/console.h>
 #include <nav_msgs/Odometry.h>
 #include <ros/serialization.h>
@@ -15,7 +17,6 @@
 #include <set>
 #include <sstream>
 
-#include "virtual_go/bag/bag_reader.h"
 #include "virtual_go/common/sim_time.h"
 
 namespace virtual_go {

@@ -1,7 +1,7 @@
+#include "virtual_go/bag/options.h"
+
 #include <cmath>
 #include <cstdlib>
-
-#include "virtual_go/bag/options.h"
 
 namespace virtual_go {
 namespace bag {

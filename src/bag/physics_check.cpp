@@ -1,14 +1,15 @@
+#include "virtual_go/bag/physics_check.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <optional>
 
-#include "virtual_go/bag/physics_check.h"
-#include "virtual_go/flight/exact_motion.h"
 #include "virtual_go/body/rigid_body.h"
-#include "virtual_go/geometry/rotation.h"
 #include "virtual_go/common/sim_time.h"
 #include "virtual_go/common/validation.h"
+#include "virtual_go/flight/exact_motion.h"
+#include "virtual_go/geometry/rotation.h"
 
 namespace virtual_go {
 namespace bag {

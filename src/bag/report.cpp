@@ -1,3 +1,5 @@
+#include "virtual_go/bag/report.h"
+
 #include <unistd.h>
 
 #include <algorithm>
@@ -7,7 +9,6 @@
 #include <iomanip>
 #include <sstream>
 
-#include "virtual_go/bag/report.h"
 #include "virtual_go/common/sim_time.h"
 #include "virtual_go/common/validation.h"
 
@@ -42,8 +43,8 @@ void print_stamp_events(std::ostream& out, const std::string& topic, const char*
   constexpr std::size_t kShown = 5;
   for (std::size_t i = 0; i < events.size() && i < kShown; ++i) {
     out << "  " << what << " " << topic << " at " << stamp_text(events[i].stamp_ns) << " s (step "
-        << fixed(to_seconds(events[i].step_ns) * 1e3, 3) << " ms, message "
-        << events[i].index << ")\n";
+        << fixed(to_seconds(events[i].step_ns) * 1e3, 3) << " ms, message " << events[i].index
+        << ")\n";
   }
   if (events.size() > kShown) {
     out << "  ... " << events.size() - kShown << " more " << what << " on " << topic << "\n";
@@ -111,8 +112,7 @@ void print_report(std::ostream& out, const Report& report) {
     out << "\nstone (" << i.topic << "): model " << i.model << ", integrator " << i.integrator
         << ", dt " << i.dt_s << " s, rate " << i.rate_hz << " Hz, mass " << i.mass
         << " kg, moments " << vector_text(i.principal_moments_body) << " kg m^2, gravity "
-        << vector_text(i.gravity_world)
-        << " m/s^2\n";
+        << vector_text(i.gravity_world) << " m/s^2\n";
   }
 
   if (report.physics) {
@@ -238,9 +238,8 @@ void write_plot(const std::string& png_path, const Report& report, const std::st
   int arrow = 1;
   for (const SegmentResult& s : report.physics->segments) {
     if (arrow > 200) break;
-    script << "set arrow " << arrow++ << " from "
-           << seconds_between(t0, s.plan.start_ns) << ", graph 0 to "
-           << seconds_between(t0, s.plan.start_ns)
+    script << "set arrow " << arrow++ << " from " << seconds_between(t0, s.plan.start_ns)
+           << ", graph 0 to " << seconds_between(t0, s.plan.start_ns)
            << ", graph 1 nohead dashtype 2 linecolor rgb 'gray'\n";
   }
   script << "set title 'error against the exact closed form'\nset xlabel 'time (s)'\n"

@@ -1,7 +1,8 @@
+#include "virtual_go/bag/stamp_statistics.h"
+
 #include <algorithm>
 #include <cmath>
 
-#include "virtual_go/bag/stamp_statistics.h"
 #include "virtual_go/common/sim_time.h"
 
 namespace virtual_go {

@@ -1,9 +1,10 @@
+#include "virtual_go/bag/thresholds.h"
+
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <sstream>
 
-#include "virtual_go/bag/thresholds.h"
 #include "virtual_go/common/sim_time.h"
 #include "virtual_go/common/validation.h"
 #include "virtual_go/flight/integrator_registry.h"

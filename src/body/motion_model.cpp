@@ -7,7 +7,8 @@ namespace virtual_go {
 const NameTable<MotionModelInfo>& motion_models() {
   static const NameTable<MotionModelInfo> table(
       "motion model", "motion model",
-      {{"constant_omega", MotionModelKind::constant_omega}, {"rigid_body", MotionModelKind::rigid_body}});
+      {{"constant_omega", MotionModelKind::constant_omega},
+       {"rigid_body", MotionModelKind::rigid_body}});
   return table;
 }
 

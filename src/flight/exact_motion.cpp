@@ -17,9 +17,9 @@ ExactMotion::ExactMotion(const MotionSetup& setup, const RigidBodyState& initial
   }
   const MassProperties& mp = model.mass_properties();
   if (!mp.is_axisymmetric()) {
-    throw InvalidArgument("inertia",
-                          "exact rigid_body motion needs an axisymmetric inertia (Ixx == Iyy), got " +
-                              format_vector(mp.principal_moments_body()));
+    throw InvalidArgument(
+        "inertia", "exact rigid_body motion needs an axisymmetric inertia (Ixx == Iyy), got " +
+                       format_vector(mp.principal_moments_body()));
   }
   const double i1 = mp.principal_moments_body().x(), i3 = mp.principal_moments_body().z();
   left_rate_world_ = initial_.angular_momentum_world / i1;
@@ -45,7 +45,8 @@ RigidBodyState ExactMotion::state_at(double t_s) const {
   s.orientation.normalize();
   if (!s.position_world.allFinite() || !s.velocity_world.allFinite()) {
     // Finite but enormous t: the parabola overflows.
-    throw InvalidArgument("time", "time " + format_value(t_s) + " s is too large: the state overflows");
+    throw InvalidArgument("time",
+                          "time " + format_value(t_s) + " s is too large: the state overflows");
   }
   return s;
 }

@@ -33,7 +33,7 @@ void SplittingIntegrator::step(RigidBodyState& state, double dt_s, FlightCache&)
   if (model.kind() == MotionModelKind::constant_omega) {
     // Constant world omega: one exact rotation.
     state.orientation = rotation_exp(dt_s * model.angular_velocity_world(
-                                              state.orientation, state.angular_momentum_world)) *
+                                                state.orientation, state.angular_momentum_world)) *
                         state.orientation;
     state.orientation.normalize();
     return;

@@ -18,12 +18,11 @@ inline void check_rotation_per_step(const Integrator& integrator, double dt_s, d
     for (const IntegratorInfo& i : integrators().entries()) {
       if (std::isinf(i.max_rotation_per_step)) any_step.push_back(i.name);
     }
-    throw IntegrationError(integrator.name() + " cannot keep up: dt * |omega| = " +
-                           format_value(dt_s * omega_norm) + " rad per step exceeds " +
-                           format_value(max_rotation) + " rad (dt " + format_value(dt_s) +
-                           " s, |omega| " + format_value(omega_norm) +
-                           " rad/s); use a smaller dt or the " + join(any_step, " or ") +
-                           " integrator");
+    throw IntegrationError(
+        integrator.name() + " cannot keep up: dt * |omega| = " + format_value(dt_s * omega_norm) +
+        " rad per step exceeds " + format_value(max_rotation) + " rad (dt " + format_value(dt_s) +
+        " s, |omega| " + format_value(omega_norm) + " rad/s); use a smaller dt or the " +
+        join(any_step, " or ") + " integrator");
   }
 }
 

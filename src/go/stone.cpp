@@ -23,14 +23,18 @@ Stone make_stone(const StoneSpec& spec) {
   // Checked even when density or mass override it: a misspelt material is still an error.
   const double material_rho = blaming("material", [&] { return material_density(spec.material); });
   if (spec.density) blaming("density", [&] { require_positive("density", *spec.density); });
-  const double size_height = blaming(
-      "size_number", [&] { return thickness_for_size(spec.size_number.value_or(kDefaultSizeNumber)); });
+  const double size_height = blaming("size_number", [&] {
+    return thickness_for_size(spec.size_number.value_or(kDefaultSizeNumber));
+  });
   // The width is fine by now: what the lens refuses is the height, from whichever field set it.
   const char* height_field = spec.height ? "height" : "size_number";
-  const LensShape shape =
-      blaming(height_field, [&] { return LensShape(spec.width, spec.height.value_or(size_height)); });
+  const LensShape shape = blaming(
+      height_field, [&] { return LensShape(spec.width, spec.height.value_or(size_height)); });
   // A mass or inertia that underflows comes from the override that set it, else the dimensions.
-  const char* mass_field = spec.mass ? "mass" : spec.density ? "density" : spec.height ? "height" : "width";
+  const char* mass_field = spec.mass      ? "mass"
+                           : spec.density ? "density"
+                           : spec.height  ? "height"
+                                          : "width";
   return blaming(mass_field, [&] {
     if (spec.mass) {
       return Stone{shape, MassProperties::of_lens_with_mass(shape, *spec.mass),

@@ -4,11 +4,9 @@ namespace virtual_go {
 
 const NameTable<StoneMaterial>& stone_materials() {
   // Approximate densities (docs/physics.md, "Go stones").
-  static const NameTable<StoneMaterial> table("stone material", "stone material",
-                                              {{"glass", 2500.0},
-                                               {"shell", 2700.0},
-                                               {"slate", 2700.0},
-                                               {"yunzi", 2600.0}});
+  static const NameTable<StoneMaterial> table(
+      "stone material", "stone material",
+      {{"glass", 2500.0}, {"shell", 2700.0}, {"slate", 2700.0}, {"yunzi", 2600.0}});
   return table;
 }
 

@@ -23,9 +23,9 @@ double thickness_for_size(int size_number) {
   if (it == size_table_mm().end()) {
     std::string known;
     for (const int n : size_numbers()) known += " " + std::to_string(n);
-    throw InvalidArgument("stone size number", "unknown stone size number " +
-                                                   std::to_string(size_number) + " (known:" +
-                                                   known + ")");
+    throw InvalidArgument(
+        "stone size number",
+        "unknown stone size number " + std::to_string(size_number) + " (known:" + known + ")");
   }
   return it->second * 1e-3;
 }

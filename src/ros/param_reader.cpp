@@ -34,7 +34,8 @@ class Reader {
 
   [[noreturn]] static void fail(const std::string& name, const std::string& expected,
                                 XmlRpc::XmlRpcValue& value) {
-    throw ConfigError("~" + name, "~" + name + ": must be " + expected + ", got " + describe(value));
+    throw ConfigError("~" + name,
+                      "~" + name + ": must be " + expected + ", got " + describe(value));
   }
 
   void read(const std::string& name, double* out) const {

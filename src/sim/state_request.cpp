@@ -15,12 +15,11 @@ void check_angular_velocity(const std::string& field, const Eigen::Vector3d& ome
                                      format_value(limit.max_angular_velocity) + " rad/s");
   }
   if (norm * limit.dt_s > limit.max_rotation_per_step) {
-    throw InvalidArgument(field, field + ": |w| = " + format_value(norm) +
-                                     " rad/s is too fast for the " + limit.integrator +
-                                     " integrator at dt " + format_value(limit.dt_s) +
-                                     " s (at most " +
-                                     format_value(limit.max_rotation_per_step / limit.dt_s) +
-                                     " rad/s)");
+    throw InvalidArgument(
+        field, field + ": |w| = " + format_value(norm) + " rad/s is too fast for the " +
+                   limit.integrator + " integrator at dt " + format_value(limit.dt_s) +
+                   " s (at most " + format_value(limit.max_rotation_per_step / limit.dt_s) +
+                   " rad/s)");
   }
 }
 

@@ -34,9 +34,8 @@ void check_frame(const std::string& param, const std::string& frame) {
 // The parameter behind each StoneSpec member, as make_stone's InvalidArgument::field() names it.
 const std::string& stone_parameter(const std::string& spec_field) {
   static const std::map<std::string, std::string> parameters = {
-      {"size_number", "stone/size"},         {"width", "stone/width"},
-      {"height", "stone/height"},            {"material", "stone/material"},
-      {"density", "stone/density"},          {"mass", "stone/mass"}};
+      {"size_number", "stone/size"},  {"width", "stone/width"},     {"height", "stone/height"},
+      {"material", "stone/material"}, {"density", "stone/density"}, {"mass", "stone/mass"}};
   return parameters.at(spec_field);
 }
 
@@ -121,15 +120,14 @@ CheckedConfig check_config(const StoneConfig& c) {
 
   const MotionSetup setup{MotionModel(model, stone->mass_properties), c.gravity_world};
   const double dt_s = to_seconds(dt_ns);
-  const AngularVelocityLimit limit{c.max_angular_velocity, integrator->max_rotation_per_step,
-                                   dt_s, integrator->name};
+  const AngularVelocityLimit limit{c.max_angular_velocity, integrator->max_rotation_per_step, dt_s,
+                                   integrator->name};
   RigidBodyState initial;
   try {
-    initial = state_from_request({"~initial/position", "~initial/orientation",
-                                  "~initial/velocity", "~initial/angular_velocity"},
-                                 setup.model, c.initial_position_world,
-                                 c.initial_orientation_xyzw, c.initial_velocity_world,
-                                 c.initial_angular_velocity_world, limit);
+    initial = state_from_request({"~initial/position", "~initial/orientation", "~initial/velocity",
+                                  "~initial/angular_velocity"},
+                                 setup.model, c.initial_position_world, c.initial_orientation_xyzw,
+                                 c.initial_velocity_world, c.initial_angular_velocity_world, limit);
   } catch (const InvalidArgument& e) {
     throw ConfigError(e.field(), e.what());
   }

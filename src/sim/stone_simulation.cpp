@@ -15,7 +15,8 @@ constexpr std::int64_t kMaxLagNs = kNanosecondsPerSecond;
 
 }  // namespace
 
-StoneSimulation::StoneSimulation(const StoneConfig& config) : StoneSimulation(check_config(config)) {}
+StoneSimulation::StoneSimulation(const StoneConfig& config)
+    : StoneSimulation(check_config(config)) {}
 
 StoneSimulation::StoneSimulation(CheckedConfig checked)
     : checked_(std::move(checked)),
@@ -40,8 +41,8 @@ void StoneSimulation::set_state(const Eigen::Vector3d& position_world,
                                 const Eigen::Vector3d& angular_velocity_world) {
   const RigidBodyState s =
       state_from_request({"pose.position", "pose.orientation", "twist.linear", "twist.angular"},
-                         checked_.setup.model, position_world, orientation_xyzw,
-                         velocity_world, angular_velocity_world, checked_.angular_velocity_limit);
+                         checked_.setup.model, position_world, orientation_xyzw, velocity_world,
+                         angular_velocity_world, checked_.angular_velocity_limit);
   pending_.push_back({EventReason::set_state, s, {}, {}});
 }
 

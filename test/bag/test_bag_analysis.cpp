@@ -14,8 +14,8 @@
 #include "virtual_go/bag/report.h"
 #include "virtual_go/bag/stamp_statistics.h"
 #include "virtual_go/bag/thresholds.h"
-#include "virtual_go/flight/integrator_registry.h"
 #include "virtual_go/common/validation.h"
+#include "virtual_go/flight/integrator_registry.h"
 
 namespace vb = virtual_go::bag;
 

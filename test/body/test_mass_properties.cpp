@@ -7,8 +7,8 @@
 #include <functional>
 
 #include "virtual_go/body/mass_properties.h"
-#include "virtual_go/go/stone.h"
 #include "virtual_go/geometry/lens_shape.h"
+#include "virtual_go/go/stone.h"
 
 namespace vg = virtual_go;
 

@@ -5,12 +5,12 @@
 #include <limits>
 
 #include "support/physics_reference.h"
+#include "virtual_go/body/rigid_body.h"
+#include "virtual_go/common/validation.h"
 #include "virtual_go/flight/exact_motion.h"
 #include "virtual_go/flight/integrator_registry.h"
-#include "virtual_go/body/rigid_body.h"
-#include "virtual_go/go/stone.h"
 #include "virtual_go/geometry/tessellation.h"
-#include "virtual_go/common/validation.h"
+#include "virtual_go/go/stone.h"
 
 namespace vg = virtual_go;
 using vgtest::contains;

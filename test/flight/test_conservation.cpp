@@ -8,9 +8,9 @@
 #include <cstdio>
 
 #include "support/physics_reference.h"
+#include "virtual_go/body/rigid_body.h"
 #include "virtual_go/flight/flight_cache.h"
 #include "virtual_go/flight/integrator_registry.h"
-#include "virtual_go/body/rigid_body.h"
 #include "virtual_go/go/stone.h"
 
 namespace vg = virtual_go;

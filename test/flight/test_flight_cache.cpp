@@ -36,8 +36,8 @@ std::pair<double, double> error_at(const vg::RigidBodyState& s0, const vg::Rigid
   const Eigen::Vector3d& i = kStone.principal_moments_body();
   const vgtest::AxisymmetricTop top{i.x(), i.z(), vgtest::from_eigen(s0.orientation),
                                     s0.angular_momentum_world};
-  const Eigen::Vector3d x = s0.position_world + s0.velocity_world * t +
-                            0.5 * vg::kStandardGravity * t * t;
+  const Eigen::Vector3d x =
+      s0.position_world + s0.velocity_world * t + 0.5 * vg::kStandardGravity * t * t;
   return {vgtest::angle_between(top.orientation_at(t), vgtest::from_eigen(s.orientation)),
           (s.position_world - x).norm()};
 }

@@ -1,17 +1,17 @@
 // Torque-free rotation of the axisymmetric stone (rigid_body model): the closed form of
-// docs/physics.md and ExactMotion against an independent RK4 integration of Euler's equations; a spin
-// about the symmetry axis stays about it; an off-axis spin precesses at
-// Omega = (I3 - I1) omega3 / I1 in the body and its axis sweeps a cone about L with
-// cos(theta) = I3 omega3 / |L| at |L| / I1 - all measured from the integrated trajectories.
+// docs/physics.md and ExactMotion against an independent RK4 integration of Euler's equations; a
+// spin about the symmetry axis stays about it; an off-axis spin precesses at Omega = (I3 - I1)
+// omega3 / I1 in the body and its axis sweeps a cone about L with cos(theta) = I3 omega3 / |L| at
+// |L| / I1 - all measured from the integrated trajectories.
 #include <gtest/gtest.h>
 
 #include <cstdio>
 
 #include "support/physics_reference.h"
+#include "virtual_go/body/rigid_body.h"
 #include "virtual_go/flight/exact_motion.h"
 #include "virtual_go/flight/flight_cache.h"
 #include "virtual_go/flight/integrator_registry.h"
-#include "virtual_go/body/rigid_body.h"
 #include "virtual_go/go/stone.h"
 
 namespace vg = virtual_go;

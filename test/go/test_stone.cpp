@@ -4,8 +4,8 @@
 
 #include <map>
 
-#include "virtual_go/go/stone.h"
 #include "virtual_go/geometry/lens_shape.h"
+#include "virtual_go/go/stone.h"
 
 namespace vg = virtual_go;
 

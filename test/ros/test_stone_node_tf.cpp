@@ -25,8 +25,8 @@ TEST(StoneNodeTf, LatchedTopicsArrive) {
   EXPECT_GT(info.principal_moments.z, info.principal_moments.x);  // flat lens: I3 > I1
   EXPECT_GT(info.header.stamp.toNSec(), 0u);
 
-  // ~info against values written here from test/ros/config/spin*.yaml and docs/physics.md, not from the
-  // node's own output: ClosedForm::from_info trusts ~info, so a swapped x y z w / w x y z or an
+  // ~info against values written here from test/ros/config/spin*.yaml and docs/physics.md, not from
+  // the node's own output: ClosedForm::from_info trusts ~info, so a swapped x y z w / w x y z or an
   // ignored parameter would otherwise go unnoticed.
   // The .test file tells which model its YAML sets (spin.yaml: rigid_body,
   // spin_constant_omega.yaml: constant_omega); the rest of the YAML is the same.

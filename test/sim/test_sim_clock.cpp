@@ -1,9 +1,8 @@
 // SimClock: whole-nanosecond grid, accumulator semantics, time jumps.
-#include "virtual_go/sim/sim_clock.h"
-
 #include <gtest/gtest.h>
 
 #include "virtual_go/common/validation.h"
+#include "virtual_go/sim/sim_clock.h"
 
 namespace vg = virtual_go;
 using Action = vg::SimClock::Action;

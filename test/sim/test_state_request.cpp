@@ -1,6 +1,4 @@
 // Request validation: bad values are refused with the field named; good ones build a state.
-#include "virtual_go/sim/state_request.h"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -8,6 +6,7 @@
 
 #include "virtual_go/body/mass_properties.h"
 #include "virtual_go/common/validation.h"
+#include "virtual_go/sim/state_request.h"
 
 namespace vg = virtual_go;
 

@@ -1,12 +1,12 @@
 // Parameter validation: every bad parameter is refused with its name in the message.
-#include "virtual_go/sim/stone_config.h"
-#include "virtual_go/sim/stone_parameters.h"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <functional>
 #include <limits>
+
+#include "virtual_go/sim/stone_config.h"
+#include "virtual_go/sim/stone_parameters.h"
 
 namespace vg = virtual_go;
 

@@ -1,12 +1,11 @@
 // The node's parameter table: every StoneConfig field once, defaults taken from StoneConfig, and
 // README.md's parameter table restating it row for row.
-#include "virtual_go/sim/stone_parameters.h"
-
 #include <gtest/gtest.h>
 
 #include <set>
 
 #include "support/readme_tables.h"
+#include "virtual_go/sim/stone_parameters.h"
 
 namespace vg = virtual_go;
 

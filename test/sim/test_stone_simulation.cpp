@@ -1,7 +1,5 @@
 // StoneSimulation: the node's behaviour without ROS. Time is driven by hand with jitter,
 // jumps and repeated ticks; requests, events and auto reset are checked at exact grid times.
-#include "virtual_go/sim/stone_simulation.h"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -9,6 +7,7 @@
 
 #include "virtual_go/flight/exact_motion.h"
 #include "virtual_go/geometry/rotation.h"
+#include "virtual_go/sim/stone_simulation.h"
 
 namespace vg = virtual_go;
 

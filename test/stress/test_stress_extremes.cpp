@@ -8,9 +8,9 @@
 #include <vector>
 
 #include "support/stress_cases.h"
+#include "virtual_go/common/validation.h"
 #include "virtual_go/flight/exact_motion.h"
 #include "virtual_go/flight/flight_cache.h"
-#include "virtual_go/common/validation.h"
 
 namespace {
 

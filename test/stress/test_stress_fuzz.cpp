@@ -3,8 +3,8 @@
 // throws the documented virtual_go::InvalidArgument / IntegrationError. Nothing else.
 #include <gtest/gtest.h>
 
-#include <cmath>
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <optional>
 #include <random>
@@ -12,10 +12,10 @@
 #include <typeinfo>
 
 #include "support/stress_cases.h"
+#include "virtual_go/common/validation.h"
 #include "virtual_go/flight/exact_motion.h"
 #include "virtual_go/flight/flight_cache.h"
 #include "virtual_go/geometry/tessellation.h"
-#include "virtual_go/common/validation.h"
 
 namespace {
 
@@ -135,23 +135,23 @@ TEST(StressFuzz, LensShapeMassAndModel) {
         EXPECT_LE(volume, cylinder * (1.0 + 1e-12)) << "case " << i << ": " << w << " " << h;
       }
     });
-    call(
-        "make_stone", i, tally, [&] {
-      vg::StoneSpec spec;
-      if (fz.coin()) spec.size_number = fz.integer(-5, 45);
-      if (fz.coin()) spec.width = fz.positive(0.022);
-      if (fz.integer(0, 3) == 0) spec.height = fz.positive(0.009);
-      spec.material = fz.name(vg::material_names());
-      if (fz.integer(0, 3) == 0) spec.density = fz.positive(2700.0);
-      if (fz.integer(0, 3) == 0) spec.mass = fz.positive(0.005);
-      const vg::Stone stone = vg::make_stone(spec);
-      const vg::MassProperties& mp = stone.mass_properties;
-      EXPECT_TRUE(std::isfinite(mp.mass()) && mp.mass() > 0.0) << i;
-      EXPECT_TRUE(mp.principal_moments_body().allFinite() &&
-                  (mp.principal_moments_body().array() > 0.0).all())
-          << i;
-        },
-        {"size_number", "width", "height", "material", "density", "mass"});
+    call("make_stone", i, tally,
+         [&] {
+           vg::StoneSpec spec;
+           if (fz.coin()) spec.size_number = fz.integer(-5, 45);
+           if (fz.coin()) spec.width = fz.positive(0.022);
+           if (fz.integer(0, 3) == 0) spec.height = fz.positive(0.009);
+           spec.material = fz.name(vg::material_names());
+           if (fz.integer(0, 3) == 0) spec.density = fz.positive(2700.0);
+           if (fz.integer(0, 3) == 0) spec.mass = fz.positive(0.005);
+           const vg::Stone stone = vg::make_stone(spec);
+           const vg::MassProperties& mp = stone.mass_properties;
+           EXPECT_TRUE(std::isfinite(mp.mass()) && mp.mass() > 0.0) << i;
+           EXPECT_TRUE(mp.principal_moments_body().allFinite() &&
+                       (mp.principal_moments_body().array() > 0.0).all())
+               << i;
+         },
+         {"size_number", "width", "height", "material", "density", "mass"});
     call("MassProperties", i, tally, [&] {
       const double mass = fz.positive(0.005);
       const Eigen::Vector3d moments(fz.positive(1e-7), fz.positive(1e-7), fz.positive(2e-7));
@@ -221,8 +221,7 @@ TEST(StressFuzz, StatesIntegratorsAndClosedForm) {
         try {
           integrator->advance(state, dt, cache);
         } catch (...) {
-          EXPECT_TRUE(state == before)
-              << "advance changed the state before throwing, case " << i;
+          EXPECT_TRUE(state == before) << "advance changed the state before throwing, case " << i;
           throw;
         }
         expect_good(state, "advance", i);

@@ -1,7 +1,8 @@
-// Independent closed-form motion for the node tests, written from docs/physics.md ("Flight in closed form") and
-// filled from the messages the node publishes (StoneInfo, StoneEvent): shares no code with the
-// core. Translation x0 + v0 t + g t^2 / 2; constant_omega q(t) = exp(t w) q0; rigid_body
-// (axisymmetric, I1 = I2) q(t) = exp(t L / I1) q0 exp(-Omega t e_z), Omega = (I3 - I1) w3 / I1.
+// Independent closed-form motion for the node tests, written from docs/physics.md ("Flight in
+// closed form") and filled from the messages the node publishes (StoneInfo, StoneEvent): shares no
+// code with the core. Translation x0 + v0 t + g t^2 / 2; constant_omega q(t) = exp(t w) q0;
+// rigid_body (axisymmetric, I1 = I2) q(t) = exp(t L / I1) q0 exp(-Omega t e_z), Omega = (I3 - I1)
+// w3 / I1.
 #pragma once
 
 #include <geometry_msgs/Pose.h>

@@ -53,8 +53,8 @@ inline double angle_between(const Eigen::Quaterniond& p, const Eigen::Quaternion
   return angle_between(from_eigen(p), from_eigen(q));
 }
 
-// Torque-free axisymmetric top (I1 = I2), closed form from docs/physics.md ("Flight in closed form"):
-// q(t) = exp(t L / I1) q0 exp(-Omega t e_z), Omega = (I3 - I1) omega3 / I1.
+// Torque-free axisymmetric top (I1 = I2), closed form from docs/physics.md ("Flight in closed
+// form"): q(t) = exp(t L / I1) q0 exp(-Omega t e_z), Omega = (I3 - I1) omega3 / I1.
 struct AxisymmetricTop {
   double i1, i3;
   Quat q0;

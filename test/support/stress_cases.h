@@ -5,8 +5,8 @@
 #include <Eigen/Geometry>
 #include <cmath>
 
-#include "virtual_go/flight/integrator_registry.h"
 #include "virtual_go/body/rigid_body.h"
+#include "virtual_go/flight/integrator_registry.h"
 #include "virtual_go/geometry/rotation.h"
 #include "virtual_go/go/stone.h"
 

@@ -53,8 +53,9 @@ struct PhysicsBounds {
 
 // Throws InvalidArgument for an integrator name the registry does not know (unless every physics
 // bound is overridden).
-PhysicsBounds physics_bounds(const std::string& integrator, double dt_s, const SegmentResult& segment,
-                             double gravity_norm, const LimitOverrides& overrides);
+PhysicsBounds physics_bounds(const std::string& integrator, double dt_s,
+                             const SegmentResult& segment, double gravity_norm,
+                             const LimitOverrides& overrides);
 
 struct Check {
   std::string figure;   // "orientation error", "repeated stamps", ...

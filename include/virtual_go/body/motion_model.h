@@ -6,8 +6,8 @@
 #include <string>
 
 #include "virtual_go/body/mass_properties.h"
-#include "virtual_go/common/name_table.h"
 #include "virtual_go/body/rigid_body_state.h"
+#include "virtual_go/common/name_table.h"
 
 namespace virtual_go {
 

@@ -31,8 +31,8 @@ class NameTable {
   // Throws InvalidArgument "unknown <what> '<name>' (known: a b c)".
   const Entry& at(const std::string& name) const {
     if (const Entry* e = find(name)) return *e;
-    throw InvalidArgument(field_,
-                          "unknown " + what_ + " '" + name + "' (known: " + join(names(), " ") + ")");
+    throw InvalidArgument(
+        field_, "unknown " + what_ + " '" + name + "' (known: " + join(names(), " ") + ")");
   }
   std::vector<std::string> names() const {
     std::vector<std::string> out;

@@ -4,10 +4,9 @@
 // the integrator never guesses that from the state itself, and keeps nothing per body.
 #pragma once
 
+#include <Eigen/Geometry>
 #include <cstdint>
 #include <optional>
-
-#include <Eigen/Geometry>
 
 #include "virtual_go/flight/exact_motion.h"
 

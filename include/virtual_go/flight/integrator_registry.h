@@ -27,9 +27,9 @@ struct ErrorBoundConstants {
 };
 
 struct IntegratorInfo {
-  std::string name;     // as in ~integrator, ~info and make_integrator()
-  std::string summary;  // one line for help texts
-  int order;            // p: the global error is O(h^p); 0 for exact (no truncation error)
+  std::string name;              // as in ~integrator, ~info and make_integrator()
+  std::string summary;           // one line for help texts
+  int order;                     // p: the global error is O(h^p); 0 for exact (no truncation error)
   double max_rotation_per_step;  // rad: largest h |omega| a step may take; infinity: any
   ErrorBoundConstants error_bound;
   std::unique_ptr<Integrator> (*make)(const IntegratorInfo& info, const MotionSetup& setup);

@@ -13,7 +13,8 @@ struct StoneMaterial {
   double density;  // kg/m^3, approximate
 };
 
-// glass, shell, slate, yunzi (alphabetical); an unknown name is an InvalidArgument (field "stone material").
+// glass, shell, slate, yunzi (alphabetical); an unknown name is an InvalidArgument (field "stone
+// material").
 const NameTable<StoneMaterial>& stone_materials();
 // The density (kg/m^3) of a material by name.
 double material_density(const std::string& material);

@@ -44,7 +44,7 @@ struct StoneConfig {
   Eigen::Vector3d gravity_world = kStandardGravity;  // m/s^2
   StoneSpec stone;              // ~stone/size, width, height, material, density, mass
   std::string color = "black";  // ~stone/color
-  Eigen::Vector3d initial_position_world = Eigen::Vector3d(0.0, 0.0, 0.05);  // m
+  Eigen::Vector3d initial_position_world = Eigen::Vector3d(0.0, 0.0, 0.05);        // m
   Eigen::Vector4d initial_orientation_xyzw = Eigen::Vector4d(0.0, 0.0, 0.0, 1.0);  // body->world
   Eigen::Vector3d initial_velocity_world = Eigen::Vector3d::Zero();                // m/s
   Eigen::Vector3d initial_angular_velocity_world = Eigen::Vector3d::Zero();        // rad/s
@@ -63,7 +63,7 @@ struct CheckedConfig {
   MotionSetup setup;
   const IntegratorInfo* integrator;
   std::int64_t dt_ns;
-  double dt_s;  // to_seconds(dt_ns), not config.dt_s
+  double dt_s;                 // to_seconds(dt_ns), not config.dt_s
   std::int64_t auto_reset_ns;  // 0 = never
   AngularVelocityLimit angular_velocity_limit;
   RigidBodyState initial_state;
