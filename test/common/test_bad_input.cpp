@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "support/physics_reference.h"
+#include "support/stone_setup.h"
 #include "virtual_go/body/rigid_body.h"
 #include "virtual_go/common/validation.h"
 #include "virtual_go/flight/exact_motion.h"
@@ -14,6 +15,7 @@
 
 namespace vg = virtual_go;
 using vgtest::contains;
+using vgtest::stone_setup;
 using vgtest::what_of;
 
 namespace {
@@ -27,11 +29,6 @@ void expect_rejected(const std::function<void()>& f, const std::vector<std::stri
   for (const std::string& part : parts) {
     EXPECT_TRUE(contains(what, part)) << "message '" << what << "' lacks '" << part << "'";
   }
-}
-
-vg::MotionSetup stone_setup(vg::MotionModelKind kind = vg::MotionModelKind::rigid_body) {
-  return {vg::MotionModel(kind, vg::make_stone(vg::StoneSpec{}).mass_properties),
-          vg::kStandardGravity};
 }
 
 vg::RigidBodyState good_state(const vg::MotionSetup& setup) {

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "support/physics_reference.h"
+#include "support/stone_setup.h"
 #include "virtual_go/body/rigid_body.h"
 #include "virtual_go/flight/flight_cache.h"
 #include "virtual_go/flight/integrator_registry.h"
@@ -15,11 +16,8 @@ namespace vg = virtual_go;
 
 namespace {
 
-const vg::MassProperties kStone = vg::make_stone(vg::StoneSpec{}).mass_properties;
-
-vg::MotionSetup setup() {
-  return {vg::MotionModel(vg::MotionModelKind::rigid_body, kStone), vg::kStandardGravity};
-}
+vg::MotionSetup setup() { return vgtest::stone_setup(); }
+const vg::MassProperties kStone = setup().model.mass_properties();
 
 vg::RigidBodyState stone(const Eigen::Vector3d& x, const Eigen::Vector3d& axis_angle,
                          const Eigen::Vector3d& omega_world) {

@@ -9,20 +9,16 @@
 
 #include "support/physics_reference.h"
 #include "support/readme_tables.h"
+#include "support/stone_setup.h"
 #include "virtual_go/body/rigid_body.h"
 #include "virtual_go/common/formatting.h"
 #include "virtual_go/flight/integrator_registry.h"
 #include "virtual_go/go/stone.h"
 
 namespace vg = virtual_go;
+using vgtest::stone_setup;
 
 namespace {
-
-vg::MotionSetup stone_setup() {
-  return {vg::MotionModel(vg::MotionModelKind::rigid_body,
-                          vg::make_stone(vg::StoneSpec{}).mass_properties),
-          vg::kStandardGravity};
-}
 
 vg::RigidBodyState spinning(const vg::MotionSetup& setup, const Eigen::Vector3d& omega_world) {
   vg::RigidBodyState s;

@@ -8,6 +8,7 @@
 #include <cstdio>
 
 #include "support/physics_reference.h"
+#include "support/stone_setup.h"
 #include "virtual_go/body/rigid_body.h"
 #include "virtual_go/flight/exact_motion.h"
 #include "virtual_go/flight/flight_cache.h"
@@ -16,14 +17,9 @@
 
 namespace vg = virtual_go;
 using vgtest::Quat;
+using vgtest::stone_setup;
 
 namespace {
-
-vg::MotionSetup stone_setup() {
-  return {vg::MotionModel(vg::MotionModelKind::rigid_body,
-                          vg::make_stone(vg::StoneSpec{}).mass_properties),
-          vg::kStandardGravity};
-}
 
 // A tilted stone spinning with body angular velocity omega_body.
 vg::RigidBodyState spinning(const vg::MotionSetup& setup, const Eigen::Vector3d& omega_body) {
