@@ -227,7 +227,7 @@ fastest-repetition column of results.csv.
   energy error, `exact` at round-off for every dt.
 - The article's `euler` gains energy: even a spin exactly along the symmetry axis is unstable
   (a round-off wobble grows until the stone turns about a transverse axis; see
-  test/test_stress_extremes.cpp), and it refuses steps with dt |w| > 1 rad, as `rk4` does.
+  test/stress/test_stress_extremes.cpp), and it refuses steps with dt |w| > 1 rad, as `rk4` does.
 - `article`: peers with isotropic inertia reproduce the constant-omega model; Bullet's and
   ODE's finite rotation are exact per step there (exponential map), ODE's default infinitesimal
   update is first order.

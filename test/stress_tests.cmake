@@ -1,4 +1,4 @@
-# Stability stress suite (issue 4): 10^7 exact steps, a 10^6-step splitting run, extreme inputs
+# Stability stress suite: 10^7 exact steps, a 10^6-step splitting run, extreme inputs
 # and a fixed-seed fuzz of the core's public entry points. About a minute at most in all.
 catkin_add_gtest(test_stress
   test/stress/test_stress_long.cpp

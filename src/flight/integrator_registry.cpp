@@ -23,33 +23,19 @@ const NameTable<IntegratorInfo>& integrators() {
   // euler and rk4 follow at most 1 rad per step (beyond it their error is no longer small, and
   // they refuse the step); splitting and exact take any step. Error constants: see
   // ErrorBoundConstants.
-  static const NameTable<IntegratorInfo> table("integrator", "integrator",
-                                               {
-                                                   {"euler",
-                                                    "the article's explicit Euler, first order",
-                                                    1,
-                                                    1.0,
-                                                    {5.0, 0.5, 1.01},
-                                                    &make<EulerIntegrator>},
-                                                   {"rk4",
-                                                    "classical fourth-order Runge-Kutta",
-                                                    4,
-                                                    1.0,
-                                                    {0.1, 0.02, 0.0},
-                                                    &make<Rk4Integrator>},
-                                                   {"splitting",
-                                                    "second-order symplectic Lie-Poisson splitting",
-                                                    2,
-                                                    kAnyStep,
-                                                    {2.0, 0.02, 0.0},
-                                                    &make<SplittingIntegrator>},
-                                                   {"exact",
-                                                    "closed form (torque-free axisymmetric body)",
-                                                    0,
-                                                    kAnyStep,
-                                                    {0.0, 0.0, 0.0},
-                                                    &make<ExactIntegrator>},
-                                               });
+  // Two lines per integrator: name and summary; order p, step limit (rad), K_q K_E K_g, factory.
+  // clang-format off
+  static const NameTable<IntegratorInfo> table("integrator", "integrator", {
+      {"euler", "the article's explicit Euler, first order",
+       1, 1.0, {5.0, 0.5, 1.01}, &make<EulerIntegrator>},
+      {"rk4", "classical fourth-order Runge-Kutta",
+       4, 1.0, {0.1, 0.02, 0.0}, &make<Rk4Integrator>},
+      {"splitting", "second-order symplectic Lie-Poisson splitting",
+       2, kAnyStep, {2.0, 0.02, 0.0}, &make<SplittingIntegrator>},
+      {"exact", "closed form (torque-free axisymmetric body)",
+       0, kAnyStep, {0.0, 0.0, 0.0}, &make<ExactIntegrator>},
+  });
+  // clang-format on
   return table;
 }
 

@@ -1,9 +1,6 @@
 #include "virtual_go/sim/stone_parameters.h"
 
-#include <type_traits>
-
 #include "virtual_go/common/formatting.h"
-#include "virtual_go/common/sim_time.h"
 #include "virtual_go/flight/integrator_registry.h"
 #include "virtual_go/go/stone.h"
 
