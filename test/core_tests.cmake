@@ -15,3 +15,10 @@ foreach(core_test
   catkin_add_gtest(${core_test} test/${core_test}.cpp)
   target_link_libraries(${core_test} virtual_go_core GTest::gtest_main)
 endforeach()
+
+# Contact work (issue 10): one binary per concept, in folders mirroring src/.
+foreach(area_test geometry/test_lens_geometry go/test_board contact/test_material)
+  get_filename_component(test_name ${area_test} NAME)
+  catkin_add_gtest(${test_name} test/${area_test}.cpp)
+  target_link_libraries(${test_name} virtual_go_core GTest::gtest_main)
+endforeach()
