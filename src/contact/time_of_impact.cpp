@@ -1,0 +1,103 @@
+#include "virtual_go/contact/time_of_impact.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "virtual_go/contact/flight_gap_bound.h"
+#include "virtual_go/exact_motion.h"
+#include "virtual_go/validation.h"
+
+namespace virtual_go {
+
+Eigen::Vector3d point_velocity_world(const MotionModel& model, const RigidBodyState& state,
+                                     const Eigen::Vector3d& point_world) {
+  const Eigen::Vector3d omega =
+      model.angular_velocity_world(state.orientation, state.angular_momentum_world);
+  return state.velocity_world + omega.cross(point_world - state.position_world);
+}
+
+TimeOfImpact board_time_of_impact(const BoardDistance& board, const MotionSetup& setup,
+                                  const RigidBodyState& anchor, double anchor_time_s,
+                                  double start_time_s, double horizon_s,
+                                  const TimeOfImpactOptions& options) {
+  require_finite("anchor time", anchor_time_s);
+  require_finite("start time", start_time_s);
+  require_finite("horizon", horizon_s);
+  if (horizon_s < start_time_s) {
+    throw InvalidArgument("horizon " + format_value(horizon_s) + " s is before the start time " +
+                          format_value(start_time_s) + " s");
+  }
+  const ExactMotion flight(setup, anchor);
+  const Eigen::Vector3d precession = axis_precession_world(setup.model, flight.initial());
+  const Eigen::Vector3d& gravity = setup.gravity_world;
+  const LensGeometry& lens = board.lens();
+  static const Eigen::Vector3d kFaceNormals[5] = {
+      Eigen::Vector3d::UnitZ(), Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY(),
+      -Eigen::Vector3d::UnitX(), -Eigen::Vector3d::UnitY()};
+
+  TimeOfImpact result;
+  double t = start_time_s;
+  for (;;) {
+    const RigidBodyState state = flight.state_at(t - anchor_time_s);
+    const LensPose pose = lens_pose(state);
+    const BoardContact on_box = board.box(pose);
+    const BoardContact on_table = board.table(pose);
+    const BoardContact& nearest = on_table.lens.gap_m < on_box.lens.gap_m ? on_table : on_box;
+    const double gap = nearest.lens.gap_m;
+    const double rate = nearest.lens.normal_world.dot(
+        point_velocity_world(setup.model, state, nearest.lens.point_world));
+    result.time_s = t;
+    result.state = state;
+    result.contact = nearest;
+    result.approach_speed_mps = -rate;
+    if (gap <= 0.0 && rate <= 0.0) {  // touching or overlapping, and not separating
+      result.hit = true;
+      return result;
+    }
+    if (result.advancement_steps + result.polish_steps >= options.max_steps) {
+      result.exhausted = true;
+      return result;
+    }
+
+    // The safe step: the box is apart while any of its axes keeps a positive gap (largest step
+    // over the axes), the stone is free while both box and table are (smallest over the two).
+    auto step_along = [&](const Eigen::Vector3d& n, double support) {
+      const FlightGapBound bound(lens, pose, state.velocity_world, precession, gravity, n, support);
+      const bool touching = std::abs(bound.gap()) <= options.touch_tolerance_m;
+      return bound.safe_step(touching);
+    };
+    double box_step = 0.0;
+    for (const Eigen::Vector3d& n : kFaceNormals) {
+      box_step = std::max(box_step, step_along(n, board.box_support(n)));
+    }
+    const Eigen::Vector3d& n_box = on_box.lens.normal_world;
+    box_step = std::max(box_step, step_along(n_box, board.box_support(n_box)));
+    const double table_step = step_along(Eigen::Vector3d::UnitZ(), -board.board().thickness_m);
+    const double step = std::min(box_step, table_step);
+
+    // No representable progress: the contact is now (to the last bit of t).
+    const double min_step = 4.0 * std::numeric_limits<double>::epsilon() * std::abs(t) + 1e-18;
+    if (step <= min_step) {
+      result.hit = true;
+      return result;
+    }
+    if (t + step >= horizon_s) {
+      result.time_s = horizon_s;
+      result.state = flight.state_at(horizon_s - anchor_time_s);
+      const LensPose end_pose = lens_pose(result.state);
+      result.contact = board.nearest(end_pose);
+      result.approach_speed_mps = -result.contact.lens.normal_world.dot(
+          point_velocity_world(setup.model, result.state, result.contact.lens.point_world));
+      return result;
+    }
+    if (gap > options.polish_gap_m) {
+      ++result.advancement_steps;
+    } else {
+      ++result.polish_steps;
+    }
+    t += step;
+  }
+}
+
+}  // namespace virtual_go
