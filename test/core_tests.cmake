@@ -17,7 +17,15 @@ foreach(core_test
 endforeach()
 
 # Contact work (issue 10): one binary per concept, in folders mirroring src/.
-foreach(area_test geometry/test_lens_geometry go/test_board contact/test_material)
+foreach(area_test
+    geometry/test_lens_geometry
+    geometry/test_lens_distance
+    go/test_board
+    go/test_board_distance
+    contact/test_material
+    contact/test_flight_gap_bound
+    contact/test_time_of_impact
+    contact/test_impact)
   get_filename_component(test_name ${area_test} NAME)
   catkin_add_gtest(${test_name} test/${area_test}.cpp)
   target_link_libraries(${test_name} virtual_go_core GTest::gtest_main)
