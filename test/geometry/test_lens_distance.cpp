@@ -10,6 +10,7 @@
 #include <random>
 
 #include "../support/convex_reference.h"
+#include "../support/flight_reference.h"
 #include "virtual_go/geometry/lens_distance.h"
 
 namespace vg = virtual_go;
@@ -184,38 +185,6 @@ TEST(LensDistance, PointInsideIsMinusTheDistanceToTheBoundary) {
   }
 }
 
-// The separating-axis gap of the lens to the line, by brute force over directions
-// perpendicular to it with the reference support, refined by Brent's method.
-double brute_force_line_gap(const vgtest::LensReference& ref, const Eigen::Vector3d& p0,
-                            const Eigen::Vector3d& e, Eigen::Vector3d* best_n) {
-  Eigen::Vector3d u1 =
-      (std::abs(e.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY());
-  u1 = (u1 - u1.dot(e) * e).normalized();
-  const Eigen::Vector3d u2 = e.cross(u1);
-  auto n_of = [&](double psi) { return Eigen::Vector3d(std::cos(psi) * u1 + std::sin(psi) * u2); };
-  auto f = [&](double psi) {
-    const Eigen::Vector3d n = n_of(psi);
-    return n.dot(ref.x - p0) - ref.reach(n);
-  };
-  constexpr int kScan = 3600;
-  std::vector<double> values(kScan);
-  for (int j = 0; j < kScan; ++j) values[j] = f(2 * M_PI * j / kScan);
-  double best = -1e9, best_psi = 0;
-  for (int j = 0; j < kScan; ++j) {
-    if (values[j] < values[(j + 1) % kScan] || values[j] < values[(j + kScan - 1) % kScan])
-      continue;
-    const double h = 2 * M_PI / kScan;
-    const auto r = boost::math::tools::brent_find_minima([&](double t) { return -f(t); },
-                                                         (j - 1) * h, (j + 1) * h, 40);
-    if (-r.second > best) {
-      best = -r.second;
-      best_psi = r.first;
-    }
-  }
-  if (best_n) *best_n = n_of(best_psi);
-  return best;
-}
-
 TEST(LensDistance, LineAtAKnownDistanceFromATangentPlane) {
   // A line in the plane that supports the lens at s = support(u), lifted by delta along u, is
   // delta from the lens. Tiny deltas are where a sampled maximisation could miss the narrow arc
@@ -250,7 +219,7 @@ TEST(LensDistance, LineDistanceMatchesGjkAndTheDirectionScan) {
     const Eigen::Vector3d p0 = ref.x + 1.3 * kA * f.uniform(f.rng) * f.random_perpendicular(e);
     const vg::LensContact c = vg::lens_line_distance(f.lens, Fixture::pose(ref), p0, e);
     Eigen::Vector3d scan_n;
-    const double scan = brute_force_line_gap(ref, p0, e, &scan_n);
+    const double scan = vgtest::line_gap_by_scan(ref, p0, e, &scan_n);
     worst_scan = std::max(worst_scan, std::abs(c.gap_m - scan));
     if (scan > 1e-6) worst_normal = std::max(worst_normal, (c.normal_world - scan_n).norm());
     const vgtest::GjkResult gjk =
