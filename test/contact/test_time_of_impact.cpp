@@ -220,7 +220,7 @@ TEST(TimeOfImpact, TumblingFromHighAbove) {
 // Whether GJK (lens vs box, written in the test) proves the lens apart from the board.
 bool gjk_apart(const Fixture& fx, const vgtest::LensReference& lens) {
   const vgtest::GjkResult r =
-      vgtest::gjk_distance(lens, vgtest::BoxReference{fx.hx, fx.hy, -fx.t, 0.0});
+      vgtest::gjk_distance(lens, vgtest::BoxReference{fx.hx, fx.hy, -fx.t, 0.0}, 300, true);
   return !r.overlap && r.lower > 0.0;
 }
 

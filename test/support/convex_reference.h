@@ -69,8 +69,10 @@ struct GjkResult {
   int iterations = 0;
 };
 
+// With stop_once_apart the search ends as soon as a positive lower bound proves the sets apart.
 template <class ShapeA, class ShapeB>
-GjkResult gjk_distance(const ShapeA& shape_a, const ShapeB& shape_b, int max_iterations = 300) {
+GjkResult gjk_distance(const ShapeA& shape_a, const ShapeB& shape_b, int max_iterations = 300,
+                       bool stop_once_apart = false) {
   struct Vertex {
     Eigen::Vector3d w, a, b;
   };
@@ -93,6 +95,7 @@ GjkResult gjk_distance(const ShapeA& shape_a, const ShapeB& shape_b, int max_ite
     const Vertex w = vertex(-axis);
     result.lower = std::max(result.lower, axis.dot(w.w));
     if (vn - result.lower <= 1e-17 * std::max(1.0, vn)) break;
+    if (stop_once_apart && result.lower > 0.0) break;
     bool duplicate = false;
     for (const Vertex& s : simplex) duplicate = duplicate || (s.w - w.w).norm() == 0.0;
     if (duplicate) break;
