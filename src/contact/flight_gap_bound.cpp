@@ -10,13 +10,15 @@ namespace {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
-// First tau > 0 with c0 + c1 tau + c2 tau^2 / 2 = 0 for c0 > 0 (the root formula that does not
-// cancel: 2 c0 / (-c1 + sqrt(c1^2 - 2 c0 c2))).
+// First tau > 0 with c0 + c1 tau + c2 tau^2 / 2 = 0 for c0 > 0, in the form that does not
+// cancel: 2 c0 / (-c1 + sqrt(c1^2 - 2 c0 c2)) when c1 <= 0, (c1 + sqrt(...)) / -c2 when c1 > 0
+// (then c2 < 0). A cancelling form here once made a 6 cm/s bounce overshoot by 35 us.
 double first_root(double c0, double c1, double c2) {
   if (!(c0 > 0.0)) return 0.0;
   if (c2 == 0.0) return c1 < 0.0 ? c0 / -c1 : kInfinity;
   const double disc = c1 * c1 - 2.0 * c0 * c2;
   if (c2 > 0.0 && (c1 >= 0.0 || disc < 0.0)) return kInfinity;
+  if (c1 > 0.0) return (c1 + std::sqrt(disc)) / -c2;
   return 2.0 * c0 / (-c1 + std::sqrt(disc));
 }
 

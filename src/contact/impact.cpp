@@ -14,10 +14,14 @@ namespace virtual_go {
 namespace {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
-// In units of the approach speed |u-|: below kApproach the slip speed is taken straight onto 0
-// (the slip direction has settled), below kSnap it counts as 0 and u_t is set to exactly 0.
+// In units of the approach speed |u-|: below kApproach a closing slip is taken straight onto 0
+// (the direction has settled); below kSnapPerTolerance times the integration tolerance the
+// integrated u_t is noise, so it counts as 0 and is set to exactly 0 (by a tangential impulse
+// that removes energy, u_t^T K_tt^-1 u_t / 2).
 constexpr double kApproach = 1e-8;
-constexpr double kSnap = 1e-12;
+constexpr double kSnapPerTolerance = 100.0;
+// Largest velocity error (units of |u-|) accepted when a nearly straight slip is taken as straight.
+constexpr double kRay = 1e-13;
 
 using SlipState = std::array<double, 3>;  // tangential impulse (2), normal work
 
@@ -49,7 +53,9 @@ class ImpulseProcess {
  public:
   ImpulseProcess(const Eigen::Matrix3d& k, const Eigen::Vector3d& u0, double mu, double e,
                  const ImpactOptions& options)
-      : k_(k), u0_(u0), mu_(mu), e_(e), options_(options) {}
+      : k_(k), u0_(u0), mu_(mu), e_(e), options_(options) {
+    if (mu_ > 0.0) classify_zero_slip();
+  }
 
   void run() {
     if (mu_ == 0.0) {  // frictionless: du/dp = K n throughout
@@ -104,11 +110,12 @@ class ImpulseProcess {
       const Eigen::Vector3d u = velocity(p_, pt_);
       const Eigen::Vector2d ut = u.head<2>();
       const double s = ut.norm();
-      if (s <= kSnap) {
+      if (s <= kSnapPerTolerance * options_.tolerance) {
         // Onto u_t = 0 exactly: the tangential impulse that zeroes u_t at this p (a change of
         // order kSnap / K_tt), then stick or re-slip, both straight phases to the end.
         pt_ -= k_.topLeftCorner<2, 2>().ldlt().solve(ut);
-        advance_linear(sticking_or_reslip_rate(), kInfinity);
+        stuck_ = can_stick_;
+        advance_linear(can_stick_ ? stick_rate_ : Eigen::Vector2d(-mu_ * ray_), kInfinity);
         return;
       }
       const Eigen::Vector2d dir = ut / s;
@@ -116,6 +123,21 @@ class ImpulseProcess {
           k_.topRightCorner<2, 1>() - mu_ * k_.topLeftCorner<2, 2>() * dir;
       const double s_rate = dir.dot(accel);
       const double to_zero = s_rate < 0.0 ? s / -s_rate : kInfinity;
+      // On a ray the slip direction stays fixed and the rest of the slip is a straight line,
+      // closed form; near u_t = 0 rays attract the slip and integrating them is stiff (steps
+      // ~ |u_t|). Closing in on u_t = 0 the direction still turns by about turn / |s_rate| on
+      // the way; moving out it settles on the unique re-slip ray. The switch is taken when
+      // |u_t| times that turn is below kRay.
+      const double turn = std::abs(dir.x() * accel.y() - dir.y() * accel.x());
+      if (s_rate < 0.0 && s * turn <= kRay * -s_rate) {
+        if (advance_linear(-mu_ * dir, to_zero)) return;
+        ++steps_;
+        continue;  // now at u_t ~ 0: snapped on the next pass
+      }
+      if (s_rate > 0.0 && !can_stick_ && s * (dir - ray_).norm() <= kRay) {
+        advance_linear(-mu_ * ray_, kInfinity);
+        return;
+      }
       if (s <= kApproach && s_rate < 0.0) {
         if (advance_linear(-mu_ * dir, to_zero)) return;
         ++steps_;
@@ -180,17 +202,14 @@ class ImpulseProcess {
     p_ = p;
   }
 
-  // The tangential impulse rate at u_t = 0: stick when the friction cone allows it, else the
-  // re-slip ray.
-  Eigen::Vector2d sticking_or_reslip_rate() {
+  // What happens at u_t = 0 (the same all through the impact, K being constant): stick when
+  // the friction cone allows the impulse rate that keeps u_t = 0, else slip again along the ray.
+  void classify_zero_slip() {
     const Eigen::Matrix2d ktt = k_.topLeftCorner<2, 2>();
     const Eigen::Vector2d ktn = k_.topRightCorner<2, 1>();
-    const Eigen::Vector2d stick = -ktt.ldlt().solve(ktn);
-    if (stick.norm() <= mu_) {
-      stuck_ = true;
-      return stick;
-    }
-    stuck_ = false;
+    stick_rate_ = -ktt.ldlt().solve(ktn);
+    can_stick_ = stick_rate_.norm() <= mu_;
+    if (can_stick_) return;
     // K_tn = (l 1 + mu K_tt) s with |s| = 1: in K_tt's eigenbasis |s(l)| falls strictly from
     // |K_tt^-1 K_tn| / mu > 1 at l = 0 to <= 1 at l = |K_tn|, so l is unique.
     const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(ktt);
@@ -208,8 +227,7 @@ class ImpulseProcess {
         iterations);
     const double l = 0.5 * (bracket.first + bracket.second);
     const Eigen::Vector2d s_eigen(kt.x() / (mu_ * kappa.x() + l), kt.y() / (mu_ * kappa.y() + l));
-    const Eigen::Vector2d s = (eigen.eigenvectors() * s_eigen).normalized();
-    return -mu_ * s;
+    ray_ = (eigen.eigenvectors() * s_eigen).normalized();
   }
 
   void move_linear(const Eigen::Vector2d& xi, double delta) {
@@ -265,6 +283,9 @@ class ImpulseProcess {
   double p_ = 0.0, w_ = 0.0, w_target_ = 0.0, p_compression_ = 0.0;
   Eigen::Vector2d pt_ = Eigen::Vector2d::Zero(), pt_compression_ = Eigen::Vector2d::Zero();
   bool compressed_ = false, finished_ = false, stuck_ = false, stuck_at_compression_ = false;
+  bool can_stick_ = true;
+  Eigen::Vector2d stick_rate_ = Eigen::Vector2d::Zero();
+  Eigen::Vector2d ray_ = Eigen::Vector2d::Zero();  // the re-slip direction when !can_stick_
   int steps_ = 0, rejected_ = 0;
 };
 

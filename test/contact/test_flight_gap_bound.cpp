@@ -151,4 +151,27 @@ TEST(FlightGapBound, ATouchingStoneMayLeaveButNotApproach) {
   EXPECT_EQ(fx.bound(f, n, support).safe_step(true), 0.0);
 }
 
+TEST(FlightGapBound, ARisingStoneATinyGapAboveReturnsAfterTwoVOverG) {
+  // Flat, not rotating, a round-off-sized gap above the plane and rising at v: it comes back to
+  // the same height after exactly 2 v / g. The root formula must not cancel here.
+  Fixture fx;
+  for (double v : {1.0, 0.0619, 1e-3}) {
+    for (double gap0 : {0.0, 3.5e-18, 1e-15, 1e-12}) {
+      Flight f;
+      f.x0 = Eigen::Vector3d(0.0, 0.0, kC + gap0);
+      f.v0 = Eigen::Vector3d(0.0, 0.0, v);
+      f.g = Eigen::Vector3d(0, 0, -kG);
+      f.top = vgtest::AxisymmetricTop{fx.mp.principal_moments_body().x(),
+                                      fx.mp.principal_moments_body().z(), vgtest::Quat(1, 0, 0, 0),
+                                      Eigen::Vector3d::Zero()};
+      const vg::FlightGapBound bound = fx.bound(f, Eigen::Vector3d::UnitZ(), 0.0);
+      const double step = bound.safe_step(true);
+      // The exact root: gap0 + v t - g t^2 / 2 = 0.
+      const double root = (v + std::sqrt(v * v + 2 * kG * bound.gap())) / kG;
+      EXPECT_NEAR(step, root, 1e-15 * root) << v << " " << gap0;
+      EXPECT_GE(f.gap(step, Eigen::Vector3d::UnitZ(), 0.0), -1e-17) << v << " " << gap0;
+    }
+  }
+}
+
 }  // namespace
