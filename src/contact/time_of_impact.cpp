@@ -17,6 +17,40 @@ Eigen::Vector3d point_velocity_world(const MotionModel& model, const RigidBodySt
   return state.velocity_world + omega.cross(point_world - state.position_world);
 }
 
+namespace {
+
+// Gaps above this (m) are resolved: far above the round-off of the gap (~1e-17 m), far below
+// any motion of the touching point between it and the contact.
+constexpr double kResolvableGapM = 1e-12;
+
+// A corner touching the rim is a vertex on the lens's edge: the normal is anything in the rim's
+// fan, and the direction from the corner to the nearest rim point, a difference of round-off
+// size at the contact, says nothing. The right one is the limit of that direction as the gap
+// closes: the rim point approaches the corner along its velocity's component in the meridian
+// plane (r, b), so the normal is minus that component, kept within the rim's fan
+// (|n . b| <= d/R). Unchanged when the approach has no meridian component.
+void rim_corner_normal(const LensGeometry& lens, const MotionModel& model,
+                       const RigidBodyState& state, LensContact& contact) {
+  const Eigen::Vector3d b = state.orientation * Eigen::Vector3d::UnitZ();
+  Eigen::Vector3d radial = contact.point_world - state.position_world;
+  radial = (radial - radial.dot(b) * b).normalized();
+  const Eigen::Vector3d u = point_velocity_world(model, state, contact.point_world);
+  double along_radial = -u.dot(radial), along_axis = -u.dot(b);
+  if (!(along_radial < 0.0)) return;  // not closing in from outside the rim
+  const double limit = lens.cos_cap_cone();
+  const double length = std::hypot(along_radial, along_axis);
+  if (std::abs(along_axis) > limit * length) {  // clamp into the fan
+    along_axis = std::copysign(limit, along_axis);
+    along_radial = -std::sqrt(1.0 - limit * limit);
+  } else {
+    along_radial /= length;
+    along_axis /= length;
+  }
+  contact.normal_world = along_radial * radial + along_axis * b;
+}
+
+}  // namespace
+
 TimeOfImpact board_time_of_impact(const BoardDistance& board, const MotionSetup& setup,
                                   const RigidBodyState& anchor, double anchor_time_s,
                                   double start_time_s, double horizon_s,
@@ -38,6 +72,12 @@ TimeOfImpact board_time_of_impact(const BoardDistance& board, const MotionSetup&
 
   TimeOfImpact result;
   double t = start_time_s;
+  // The feature (and lens part) seen while the gap was still resolvable: at the contact all the
+  // features through the touching point tie to round-off (a corner is on its edges) and a
+  // corner's direction to the rim is a round-off-sized difference; the approach decides.
+  bool approached = false;
+  BoardFeature approach_feature;
+  LensPart approach_part = LensPart::bottom_cap;
   for (;;) {
     const RigidBodyState state = flight.state_at(t - anchor_time_s);
     const LensPose pose = lens_pose(state);
@@ -51,9 +91,30 @@ TimeOfImpact board_time_of_impact(const BoardDistance& board, const MotionSetup&
     result.state = state;
     result.contact = nearest;
     result.approach_speed_mps = -rate;
-    if (gap <= 0.0 && rate <= 0.0) {  // touching or overlapping, and not separating
+    auto hit_now = [&] {
       result.hit = true;
+      if (approached && gap < kResolvableGapM) {
+        if (nearest.feature != approach_feature) {
+          // Only a tie: the approached feature touches too (else the step jumped to another).
+          const BoardContact other = board.feature(pose, approach_feature);
+          if (std::abs(other.lens.gap_m) >= kResolvableGapM) return result;
+          result.contact = other;
+        }
+        if (approach_feature.kind == BoardFeatureKind::top_corner &&
+            approach_part == LensPart::rim) {
+          result.contact.lens.part = LensPart::rim;
+          rim_corner_normal(lens, setup.model, state, result.contact.lens);
+        }
+      }
       return result;
+    };
+    if (gap >= kResolvableGapM) {
+      approached = true;
+      approach_feature = nearest.feature;
+      approach_part = nearest.lens.part;
+    }
+    if (gap <= 0.0 && rate <= 0.0) {  // touching or overlapping, and not separating
+      return hit_now();
     }
     if (result.advancement_steps + result.polish_steps >= options.max_steps) {
       result.exhausted = true;
@@ -79,8 +140,7 @@ TimeOfImpact board_time_of_impact(const BoardDistance& board, const MotionSetup&
     // No representable progress: the contact is now (to the last bit of t).
     const double min_step = 4.0 * std::numeric_limits<double>::epsilon() * std::abs(t) + 1e-18;
     if (step <= min_step) {
-      result.hit = true;
-      return result;
+      return hit_now();
     }
     if (t + step >= horizon_s) {
       result.time_s = horizon_s;

@@ -7,6 +7,21 @@ namespace virtual_go {
 
 namespace {
 
+// Gaps closer than this (m) are a tie: round-off of sub-metre coordinates is ~1e-17 m.
+constexpr double kTieM = 1e-15;
+
+int dimension(const BoardFeature& f) {
+  switch (f.kind) {
+    case BoardFeatureKind::top_edge:
+    case BoardFeatureKind::vertical_edge:
+      return 1;
+    case BoardFeatureKind::top_corner:
+      return 0;
+    default:
+      return 2;
+  }
+}
+
 int quadrant_sign_x(int q) { return (q == 0 || q == 3) ? 1 : -1; }
 int quadrant_sign_y(int q) { return q < 2 ? 1 : -1; }
 
@@ -106,9 +121,14 @@ BoardContact BoardDistance::box(const LensPose& pose) const {
   BoardContact best;
   best.lens = lens_gap_along(lens_, pose, Eigen::Vector3d::UnitZ(), 0.0);
   best.feature = {BoardFeatureKind::top_face, 0};
+  // Features are considered from faces to edges to corners. At a tie (to round-off) the
+  // lower-dimensional feature wins: the touching point then lies on all of them (a corner is on
+  // its edges, an edge on its faces) and the lower-dimensional feature's axis is the less
+  // constrained one, the true separating direction.
   auto consider = [&](const Eigen::Vector3d& n, const BoardFeature& feature) {
     const LensContact c = lens_gap_along(lens_, pose, n, box_support(n));
-    if (c.gap_m > best.lens.gap_m) {
+    const bool lower_dimension = dimension(feature) < dimension(best.feature);
+    if (c.gap_m > best.lens.gap_m || (lower_dimension && c.gap_m >= best.lens.gap_m - kTieM)) {
       best.lens = c;
       best.feature = feature;
     }

@@ -327,6 +327,31 @@ TEST(TimeOfImpact, CornerHitsMatchThePointGapRoot) {
   EXPECT_GE(corners, 4);
 }
 
+TEST(TimeOfImpact, ARimOnACornerGetsTheApproachNormal) {
+  // Standing on its rim in the board's diagonal plane (axis horizontal, across the diagonal),
+  // beyond the corner, falling so that the rim point 45 deg below the centre comes down on the
+  // corner: the contact normal is (d + e_z) / sqrt 2, d the diagonal, inside the corner's
+  // normal cone, so nothing else of the board is nearer. At the contact the corner-to-rim
+  // direction is a round-off-sized difference; the normal must be its limit.
+  Fixture fx;
+  const Eigen::Vector3d diagonal = Eigen::Vector3d(1, 1, 0).normalized();
+  const Eigen::Vector3d corner(fx.hx, fx.hy, 0.0);
+  const Eigen::Vector3d x = corner + (kA / std::sqrt(2.0)) * diagonal +
+                            (kA / std::sqrt(2.0) + 0.01) * Eigen::Vector3d::UnitZ();
+  const vgtest::Quat q = vgtest::axis_angle(-0.5 * M_PI * diagonal);  // e_z -> (-1, 1, 0)/sqrt 2
+  const Fixture::Throw th =
+      fx.make_throw(fx.rigid, x, Eigen::Vector3d(0, 0, -0.3), q, Eigen::Vector3d::Zero());
+  const vg::TimeOfImpact toi = vg::board_time_of_impact(fx.distance, fx.rigid, th.state, 0, 0, 1);
+  ASSERT_TRUE(toi.hit);
+  ASSERT_EQ(toi.contact.feature, (vg::BoardFeature{vg::BoardFeatureKind::top_corner, 0}));
+  ASSERT_EQ(toi.contact.lens.part, vg::LensPart::rim);
+  const Eigen::Vector3d expected = (diagonal + Eigen::Vector3d::UnitZ()).normalized();
+  EXPECT_LT((toi.contact.lens.normal_world - expected).norm(), 1e-12)
+      << toi.contact.lens.normal_world.transpose();
+  // The fall to the contact: 1 cm at 0.3 m/s under gravity.
+  EXPECT_NEAR(toi.time_s, (-0.3 + std::sqrt(0.09 + 2 * kG * 0.01)) / kG, 1e-15);
+}
+
 TEST(TimeOfImpact, SideFaceWithoutGravityIsClosedForm) {
   Fixture fx;
   vg::MotionSetup weightless{fx.rigid.model, Eigen::Vector3d::Zero()};
