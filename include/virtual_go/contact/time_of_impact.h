@@ -31,8 +31,9 @@ struct TimeOfImpact {
   double time_s = 0.0;     // the contact time, else the horizon (or how far the search got), s
   RigidBodyState state;    // the flight's state at time_s
   BoardContact contact;    // nearest feature at time_s: gap (~0 at a hit), witness, normal
-  // -(n . u_P) at time_s, m/s: > 0 approaching. A hit with a speed <= 0 means the stone already
-  // overlapped by more than the touch tolerance at the start while separating.
+  // -(n . u_P) at time_s, m/s: > 0 approaching. A hit with a speed <= 0 at the start time means
+  // the stone was not in flight there: resting on the board (speed 0) or already overlapping by
+  // more than the touch tolerance.
   double approach_speed_mps = 0.0;
   int advancement_steps = 0;  // steps taken with the gap above polish_gap_m
   int polish_steps = 0;       // steps taken below it

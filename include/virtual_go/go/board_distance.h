@@ -51,6 +51,7 @@ class BoardDistance {
 
   // The nearer of box() and table().
   BoardContact nearest(const LensPose& pose) const;
+  BoardContact nearest(const RigidBodyState& state) const { return nearest(lens_pose(state)); }
   BoardContact box(const LensPose& pose) const;
   BoardContact table(const LensPose& pose) const;
   // The distance to one feature's carrier (its whole plane, line or point), closed form; equal
