@@ -58,6 +58,15 @@ TimeOfImpact board_time_of_impact(const BoardDistance& board, const MotionSetup&
   require_finite("anchor time", anchor_time_s);
   require_finite("start time", start_time_s);
   require_finite("horizon", horizon_s);
+  if (!(options.polish_gap_m >= 0.0) || !(options.touch_tolerance_m >= 0.0) ||
+      !std::isfinite(options.polish_gap_m) || !std::isfinite(options.touch_tolerance_m) ||
+      options.max_steps < 1) {
+    throw InvalidArgument(
+        "time of impact options: polish_gap_m and touch_tolerance_m must be "
+        "finite and >= 0 and max_steps >= 1, got " +
+        format_value(options.polish_gap_m) + ", " + format_value(options.touch_tolerance_m) + ", " +
+        std::to_string(options.max_steps));
+  }
   if (horizon_s < start_time_s) {
     throw InvalidArgument("horizon " + format_value(horizon_s) + " s is before the start time " +
                           format_value(start_time_s) + " s");

@@ -452,6 +452,15 @@ TEST(TimeOfImpact, BadTimesAreRefusedByName) {
                                  vg::board_time_of_impact(fx.distance, fx.rigid, s, NAN, 0, 1);
                                }),
                                "anchor time"));
+  vg::TimeOfImpactOptions options;
+  options.touch_tolerance_m = -1.0;
+  EXPECT_TRUE(vgtest::contains(vgtest::what_of<vg::InvalidArgument>([&] {
+                                 vg::board_time_of_impact(fx.distance, fx.rigid, s, 0, 0, 1,
+                                                          options);
+                               }),
+                               "touch_tolerance_m"));
+  s.orientation.coeffs().setZero();  // the anchor state itself is checked
+  EXPECT_THROW(vg::board_time_of_impact(fx.distance, fx.rigid, s, 0, 0, 1), vg::InvalidArgument);
 }
 
 }  // namespace
