@@ -17,7 +17,9 @@ foreach(core_test
 endforeach()
 
 # Contact work (issue 10): one binary per concept, in folders mirroring src/.
-foreach(area_test geometry/test_lens_geometry go/test_board contact/test_material)
+foreach(area_test geometry/test_lens_geometry go/test_board contact/test_material
+    contact/test_plane_region contact/test_lens_on_plane contact/test_plane_contact_dynamics
+    contact/test_plane_contact)
   get_filename_component(test_name ${area_test} NAME)
   catkin_add_gtest(${test_name} test/${area_test}.cpp)
   target_link_libraries(${test_name} virtual_go_core GTest::gtest_main)

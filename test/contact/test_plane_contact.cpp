@@ -1,0 +1,3 @@
+#include <gtest/gtest.h>
+#include "virtual_go/contact/plane_contact.h"
+TEST(PlaneContact, Placeholder) {}
