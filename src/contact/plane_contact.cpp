@@ -81,8 +81,7 @@ Vector3 horizontal_unit(double angle) { return {std::cos(angle), std::sin(angle)
 // the single state right after an event.
 struct Segment {
   double t_begin = 0.0, t_end = 0.0;    // valid range
-  double step_begin = 0.0, step_end = 0.0;  // the integrator step, for the energy cap
-  double energy_begin = 0.0, energy_end = 0.0;  // guarded energies at the step's ends, J
+  double energy_begin = 0.0;  // guarded energy at the step's start, J: the cap of its samples
   PlaneContactMode mode;
   std::shared_ptr<const DenseStepper> dense;  // null: `point` holds the state
   OdeState point{};
@@ -654,8 +653,8 @@ void PlaneContact::Impl::start_mode(const Choice& choice, double t, double energ
   stepper_ready_ = false;
   if (choice.result == Choice::Result::mode) g_start_ = event_values(k, mode_);
   Segment point;
-  point.t_begin = point.t_end = point.step_begin = point.step_end = t;
-  point.energy_begin = point.energy_end = energy_cap_;
+  point.t_begin = point.t_end = t;
+  point.energy_begin = energy_cap_;
   point.mode = mode_;
   point.point = y_;
   segments_.push_back(point);
@@ -697,8 +696,8 @@ void PlaneContact::Impl::take_step() {
   const PlaneContactKinematics k_end = decode(setup_, mode_, y_end);
 
   Segment segment;
-  segment.t_begin = segment.step_begin = step.first;
-  segment.t_end = segment.step_end = step.second;
+  segment.t_begin = step.first;
+  segment.t_end = step.second;
   segment.energy_begin = energy_cap_;
   segment.mode = mode_;
   segment.dense = std::make_shared<const DenseStepper>(dense_);
@@ -742,7 +741,6 @@ void PlaneContact::Impl::take_step() {
     ++counters_.energy_guard_scalings;
     stepper_ready_ = false;  // restart the integrator from the scaled state
   }
-  segment.energy_end = energy_end;
   if (earliest) {
     segment.t_end = earliest->time;
     segments_.push_back(segment);
@@ -768,12 +766,9 @@ PlaneContact::Impl::Sample PlaneContact::Impl::sample(double t) const {
     OdeState y = it->point;
     if (it->dense) it->dense->calc_state(t, y);
     const PlaneContactKinematics k = decode(setup_, it->mode, y);
-    const double span = it->step_end - it->step_begin;
-    const double cap = span > 0.0 ? it->energy_begin + (it->energy_end - it->energy_begin) *
-                                                         (t - it->step_begin) / span
-                                  : it->energy_end;
-    // The cap interpolates the guarded energies of the step's ends: never above the start.
-    return {capped(k, it->mode, std::min(cap, it->energy_begin)), it->mode};
+    // Never above the guarded energy where the step began. (Not a chord between the step's
+    // ends: a dissipation rate growing within the step puts the true energy above the chord.)
+    return {capped(k, it->mode, it->energy_begin), it->mode};
   }
   throw InvalidArgument("contact state requested at t = " + format_value(t) +
                         " s, outside the available range [" + format_value(window_start_) +
