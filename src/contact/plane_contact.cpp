@@ -26,10 +26,6 @@ enum Index { kX = 0, kY = 1, kQw = 2, kQx = 3, kQy = 4, kQz = 5, kVx = 6, kVy = 
 using Dopri5 = odeint::runge_kutta_dopri5<OdeState>;
 using DenseStepper = odeint::result_of::make_dense_output<Dopri5>::type;
 
-// Motion below these is zero when a mode is chosen (and snapped to exactly zero): a contact
-// point creeping at 1e-12 m/s moves a picometre a second.
-constexpr double kZeroSlipSpeed = 1e-12;  // m/s
-constexpr double kZeroAngularSpeed = 1e-10;  // rad/s (1e-12 m/s at the rim)
 // Static inequalities are accepted this far past their bound (relative to m |g| and m |g| a):
 // round-off of the force solve, not physics.
 constexpr double kStaticSlack = 1e-12;
@@ -323,23 +319,23 @@ void PlaneContact::Impl::rhs(const OdeState& y, OdeState& dydt) {
 PlaneContactKinematics PlaneContact::Impl::capped(const PlaneContactKinematics& k,
                                                   const PlaneContactMode& mode,
                                                   double cap) const {
-  if (energy(k) <= cap) return k;
+  const double e = energy(k);
+  if (e <= cap) return k;
   const double m = setup_.model.mass_properties().mass();
   const double potential = -m * setup_.gravity_world.dot(k.position_world);
-  const double kinetic = energy(k) - potential;
+  const double kinetic = e - potential;
+  // Differences at the round-off of the energy's own evaluation are not a rise.
+  const double round_off = 8 * std::numeric_limits<double>::epsilon() *
+                           (std::abs(potential) + std::abs(kinetic));
+  if (e <= cap + round_off) return k;
+  // Scale (v_t, omega): every derived velocity is linear and homogeneous in them, so u = 0 holds.
+  // When even zero motion would exceed the cap (at a turning point), the energy removed is at
+  // most the excess itself.
   const double target = cap - potential;
-  // Every derived velocity is linear and homogeneous in (v_t, omega): scaling keeps u = 0.
-  double scale = target > 0.0 && kinetic > 0.0 ? std::sqrt(target / kinetic) : 0.0;
-  PlaneContactKinematics out = k;
-  for (int attempt = 0; attempt < 8; ++attempt) {
-    out = plane_contact_kinematics(setup_, mode, k.position_world.head<2>(), k.orientation,
-                                   scale * k.velocity_world.head<2>(),
-                                   scale * k.angular_velocity_world);
-    if (energy(out) <= cap) return out;
-    scale *= 1.0 - 4.0 * std::numeric_limits<double>::epsilon();
-  }
+  const double scale = target > 0.0 && kinetic > 0.0 ? std::sqrt(target / kinetic) : 0.0;
   return plane_contact_kinematics(setup_, mode, k.position_world.head<2>(), k.orientation,
-                                  Eigen::Vector2d::Zero(), Vector3::Zero());
+                                  scale * k.velocity_world.head<2>(),
+                                  scale * k.angular_velocity_world);
 }
 
 PlaneContactKinematics PlaneContact::Impl::projected(const PlaneContactKinematics& k,
@@ -649,7 +645,7 @@ void PlaneContact::Impl::start_mode(const Choice& choice, double t, double energ
   const PlaneContactKinematics k = capped(choice.kinematics, mode_, energy_cap);
   y_ = encode(k);
   t_ = t;
-  energy_cap_ = energy(k);
+  energy_cap_ = std::min(energy_cap, energy(k));
   stepper_ready_ = false;
   if (choice.result == Choice::Result::mode) g_start_ = event_values(k, mode_);
   Segment point;
@@ -667,8 +663,8 @@ void PlaneContact::Impl::refresh_references() {
       part.reference_world = velocity.normalized();
     }
   };
-  refresh(mode_.tangential, k.slip_velocity(), kZeroSlipSpeed);
-  refresh(mode_.rolling, k.rolling_velocity(), kZeroAngularSpeed);
+  refresh(mode_.tangential, k.slip_velocity(), kSlipDirectionLayer);
+  refresh(mode_.rolling, k.rolling_velocity(), kRollDirectionLayer);
   if (mode_.spinning.law == ContactLaw::sliding && std::abs(k.spin_velocity()) > kZeroAngularSpeed) {
     mode_.spinning.reference_world = Vector3(0.0, 0.0, k.spin_velocity() > 0.0 ? 1.0 : -1.0);
   }
@@ -737,9 +733,12 @@ void PlaneContact::Impl::take_step() {
   PlaneContactKinematics k_next = k_end;
   if (energy_end > energy_cap_) {
     k_next = capped(k_end, mode_, energy_cap_);
-    energy_end = energy(k_next);
-    ++counters_.energy_guard_scalings;
-    stepper_ready_ = false;  // restart the integrator from the scaled state
+    if (k_next.angular_velocity_world != k_end.angular_velocity_world ||
+        k_next.velocity_world != k_end.velocity_world) {
+      energy_end = energy(k_next);
+      ++counters_.energy_guard_scalings;
+      stepper_ready_ = false;  // restart the integrator from the scaled state
+    }
   }
   if (earliest) {
     segment.t_end = earliest->time;
@@ -754,7 +753,7 @@ void PlaneContact::Impl::take_step() {
   }
   t_ = step.second;
   y_ = encode(k_next);
-  energy_cap_ = energy_end;
+  energy_cap_ = std::min(energy_cap_, energy_end);  // never raised, not even by round-off
   g_start_ = g_end;
 }
 

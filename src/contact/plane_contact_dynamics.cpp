@@ -43,9 +43,9 @@ Vector3 PlaneContactKinematics::slip_velocity() const {
   return {u.x(), u.y(), 0.0};
 }
 
-Vector3 sliding_direction(const Vector3& velocity, const Vector3& reference) {
+Vector3 sliding_direction(const Vector3& velocity, const Vector3& reference, double layer_speed) {
   const double speed = velocity.norm();
-  if (!(speed > 0.0)) return reference;
+  if (!(speed > layer_speed)) return reference;
   return velocity.dot(reference) < 0.0 ? Vector3(-velocity / speed) : Vector3(velocity / speed);
 }
 
@@ -101,12 +101,14 @@ PlaneContactForces solve_plane_contact(const PlaneContactSetup& setup, const Pla
   double spin_sign = 0.0;
   Column normal{ez, Vector3::Zero()};
   if (mode.tangential.law == ContactLaw::sliding) {
-    tangential_direction = sliding_direction(k.slip_velocity(), mode.tangential.reference_world);
+    tangential_direction = sliding_direction(k.slip_velocity(), mode.tangential.reference_world,
+                                             kSlipDirectionLayer);
     normal.force -= law.friction * tangential_direction;
   }
   normal.torque = r.cross(normal.force);
   if (mode.rolling.law == ContactLaw::sliding) {
-    rolling_direction = sliding_direction(k.rolling_velocity(), mode.rolling.reference_world);
+    rolling_direction = sliding_direction(k.rolling_velocity(), mode.rolling.reference_world,
+                                          kRollDirectionLayer);
     normal.torque -= law.rolling_resistance_m * rolling_direction;
   }
   if (mode.spinning.law == ContactLaw::sliding) {

@@ -189,22 +189,23 @@ class PlanarCap {
   double m_, i1_, r_, d_, g_, mu_, l_r_;
 };
 
-// Period of a conservative one-degree-of-freedom oscillation between -theta0 and theta0 with
-// kinetic energy 1/2 M(theta) theta'^2 and potential V (even in theta), given as the drop
-// V(theta0) - V(theta) >= 0 as a function of (theta0, theta, theta0 - theta), the difference
-// passed without cancellation so that the caller can write the drop without it too:
-// T = 4 int_0^theta0 dtheta / theta', theta = theta0 sin(phi), theta' = sqrt(2 drop / M).
-// `breaks` (in (0, theta0)) split the quadrature where V or M have a kink.
-inline double oscillation_period(const std::function<double(double)>& inertia,
-                                 const std::function<double(double, double, double)>& drop,
-                                 double theta0, std::vector<double> breaks = {}) {
+// Time a conservative one-degree-of-freedom oscillation between -theta0 and theta0 takes from
+// the turning point theta0 to theta (0 <= theta < theta0), with kinetic energy
+// 1/2 M(theta) theta'^2 and potential V (even in theta), given as the drop V(theta0) - V(theta)
+// >= 0 as a function of (theta0, theta, theta0 - theta): the difference is passed without
+// cancellation so that the caller can write the drop without it too.
+// t = int_theta^theta0 dtheta / theta', theta = theta0 sin(phi), theta' = sqrt(2 drop / M).
+// `breaks` (in (theta, theta0)) split the quadrature where V or M have a kink.
+inline double time_from_turning_point(const std::function<double(double)>& inertia,
+                                      const std::function<double(double, double, double)>& drop,
+                                      double theta0, double theta, std::vector<double> breaks = {}) {
   auto integrand = [&](double phi) {
-    const double theta = theta0 * std::sin(phi);
-    const double half = std::sin(M_PI / 4 - phi / 2);  // theta0 - theta = 2 theta0 half^2
+    const double th = theta0 * std::sin(phi);
+    const double half = std::sin(M_PI / 4 - phi / 2);  // theta0 - th = 2 theta0 half^2
     return theta0 * std::cos(phi) /
-           std::sqrt(2 * drop(theta0, theta, 2 * theta0 * half * half) / inertia(theta));
+           std::sqrt(2 * drop(theta0, th, 2 * theta0 * half * half) / inertia(th));
   };
-  std::vector<double> edges{0.0};
+  std::vector<double> edges{std::asin(theta / theta0)};
   for (double b : breaks) edges.push_back(std::asin(b / theta0));
   edges.push_back(M_PI / 2);
   double total = 0;
@@ -212,7 +213,14 @@ inline double oscillation_period(const std::function<double(double)>& inertia,
     total += boost::math::quadrature::gauss_kronrod<double, 61>::integrate(integrand, edges[i],
                                                                            edges[i + 1], 15, 1e-14);
   }
-  return 4 * total;
+  return total;
+}
+
+// The period of that oscillation: four times the time from theta0 to 0.
+inline double oscillation_period(const std::function<double(double)>& inertia,
+                                 const std::function<double(double, double, double)>& drop,
+                                 double theta0, std::vector<double> breaks = {}) {
+  return 4 * time_from_turning_point(inertia, drop, theta0, 0.0, breaks);
 }
 
 }  // namespace plane_contact_reference

@@ -61,8 +61,8 @@ struct PlaneContactOutcome {
 };
 
 struct PlaneContactOptions {
-  double relative_tolerance = 1e-10;  // of the integrator, per step
-  double absolute_tolerance = 1e-12;  // of the integrator (m, m/s, rad/s, quaternion units)
+  double relative_tolerance = 1e-12;  // of the integrator, per step
+  double absolute_tolerance = 1e-14;  // of the integrator (m, m/s, rad/s, quaternion units)
   double max_step_s = 5e-3;           // longest integrator step, s
   double initial_step_s = 1e-4;       // first trial step after a mode change, s
   double gap_tolerance_m = 1e-9;      // accepted |gap| of the initial state, m

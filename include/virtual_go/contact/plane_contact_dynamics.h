@@ -31,7 +31,13 @@ struct ContactLawPart {
   // (horizontal for tangential and rolling, +/- e_z for spinning). The law opposes
   // sign(v . reference) v / |v|, which is v / |v| until v reaches zero and continues smoothly
   // through it, so the integrator's dense output stays accurate across the zero crossing where
-  // the event (the motion stops) is located. At v = 0 it opposes the reference itself.
+  // the event (the motion stops) is located. In a thin layer around zero motion (speeds below
+  // kSlipDirectionLayer, kRollDirectionLayer) it opposes the reference itself: there v's
+  // direction is dominated by round-off (a part just released from stuck) and following it
+  // makes the equations stiff (the law turns the motion at a rate ~ mu N / (m |v|)). The layer
+  // is left or the motion stops within microseconds; the reference is the consistent direction
+  // (release) or the direction a moment before (stop), and friction along it still dissipates
+  // until v . reference reaches 0, which is the stop event.
   Eigen::Vector3d reference_world = Eigen::Vector3d::Zero();
 };
 
@@ -97,8 +103,18 @@ struct PlaneContactForces {
 PlaneContactForces solve_plane_contact(const PlaneContactSetup& setup, const PlaneContactMode& mode,
                                        const PlaneContactKinematics& kinematics);
 
+// Motion below these is zero: a part is stuck when its motion is this small where a mode is
+// chosen (and it is then snapped to exactly zero), and a sliding part this slow opposes its
+// reference direction. A contact point creeping at 1e-12 m/s moves a picometre a second.
+constexpr double kZeroSlipSpeed = 1e-12;     // m/s
+constexpr double kZeroAngularSpeed = 1e-10;  // rad/s (1e-12 m/s at the rim)
+// The layer around zero motion where sliding parts keep their reference direction.
+constexpr double kSlipDirectionLayer = 1e-6;  // m/s
+constexpr double kRollDirectionLayer = 1e-4;  // rad/s (1e-6 m/s at the rim)
+
 // The sliding direction of a part (unit) from its velocity and reference, as the law uses it.
-Eigen::Vector3d sliding_direction(const Eigen::Vector3d& velocity, const Eigen::Vector3d& reference);
+Eigen::Vector3d sliding_direction(const Eigen::Vector3d& velocity, const Eigen::Vector3d& reference,
+                                  double layer_speed);
 
 // Total energy (J): kinetic 1/2 m v^2 + 1/2 omega . I_w omega, plus potential -m g . x_G.
 double plane_contact_energy(const PlaneContactSetup& setup, const PlaneContactKinematics& k);
