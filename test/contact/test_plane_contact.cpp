@@ -845,3 +845,60 @@ TEST(PlaneContact, SlidingCost) {
                   std::string(vg::plane_contact_event_name(o.event)) + ")",
               phase.counters(), o.time_s);
 }
+
+TEST(PlaneContact, GeneralMotionSettlesToExactRestAndTheEnergyLostIsTheWorkOfTheLaws) {
+  // Tilted, sliding, spinning and wobbling, default materials (mu 0.3, l_r 5 um, l_s 15 um).
+  // Power balance: E(t0) - E(t) = int (mu N |u_t| + l_r N |omega_t| + l_s N |omega_z|) dt
+  // (Simpson between samples, from the contact forces and the states), plus the tiny snaps.
+  const auto model = stone_model();
+  const vg::ContactMaterial law;  // the defaults
+  const Quaterniond q = Quaterniond(Eigen::AngleAxisd(1.1, Vector3d::UnitZ())) * tilt_about_y(8 * kDeg);
+  const Vector3d b = q * Vector3d::UnitZ();
+  const auto start = on_plane(model, q, Vector2d(0.05, -0.02), Vector2d(0.3, 0.1),
+                              25.0 * b + Vector3d(2.0, -3.0, 0.0));
+  vg::PlaneContact phase(model, kLens, kGravity, 0.0, vg::PlaneRegion::whole_plane(), law, start,
+                         0.0);
+  auto power = [&](double t) {
+    const vg::RigidBodyState s = phase.state_at(t);
+    const vg::PlaneContactForces f = phase.forces_at(t);
+    const Vector3d w = omega_of(model, s);
+    const Vector3d u = s.velocity_world + w.cross(lowest_offset(s.orientation));
+    // The law's power: friction and couples against the motion (zero when stuck).
+    return -(f.friction_force_world.dot(u) + f.rolling_couple_world.dot(Vector3d(w.x(), w.y(), 0)) +
+             f.spinning_couple_nm * w.z());
+  };
+  double dissipated = 0;
+  const Trace r = trace(phase, model, 30.0, 1e-3, 0.0, [&](double t0, double t1) {
+    if (!(t1 > t0)) return;
+    const int n = 8;  // Simpson on n sub-intervals
+    const double h = (t1 - t0) / n;
+    double sum = power(t0) + power(t1);
+    for (int i = 1; i < n; ++i) sum += (i % 2 ? 4 : 2) * power(t0 + i * h);
+    dissipated += sum * h / 3;
+  });
+  ASSERT_EQ(r.last.event, vg::PlaneContactEvent::rest);
+  const double e0 = energy_of(model, start), e_end = energy_of(model, r.last.state);
+  EXPECT_NEAR(e0 - e_end, dissipated, 1e-6 * (e0 - e_end));
+  // Exact rest on the static inequalities: m g d sin(tilt) <= l_r N with N = m g.
+  EXPECT_EQ(r.last.state.velocity_world, Vector3d::Zero());
+  EXPECT_EQ(r.last.state.angular_momentum_world, Vector3d::Zero());
+  const Vector3d b_end = r.last.state.orientation * Vector3d::UnitZ();
+  EXPECT_LE(std::sqrt(1 - b_end.z() * b_end.z()), law.rolling_resistance_m / kD + 1e-12);
+  // Every reported event changed the mode; energy fell throughout.
+  for (std::size_t i = 1; i < r.events.size(); ++i) {
+    const auto& a = r.events[i - 1].mode;
+    const auto& c = r.events[i].mode;
+    EXPECT_TRUE(a.part != c.part || a.tangential.law != c.tangential.law ||
+                a.rolling.law != c.rolling.law || a.spinning.law != c.spinning.law ||
+                r.events[i].finished);
+  }
+  EXPECT_LT(r.worst_gap, 1e-17);
+  expect_energy_never_rises(r);
+  report("settling: time to rest (s)", r.last.time_s);
+  report("settling: reported events", static_cast<double>(r.events.size()));
+  report("settling: energy lost - dissipated work (relative)", (e0 - e_end - dissipated) / (e0 - e_end));
+  for (const auto& e : r.events) {
+    std::cout << "[ event    ] " << e.time_s << " " << vg::plane_contact_event_name(e.event) << "\n";
+  }
+  report_cost("settling (slide, spin, wobble to rest)", phase.counters(), r.last.time_s);
+}
