@@ -39,7 +39,8 @@ Eigen::Vector3d plane_contact_offset_rate_world(const LensGeometry& lens, LensPa
       const Eigen::Vector3d w = Eigen::Vector3d::UnitZ() - c * axis_world;
       const double s = w.norm();
       const Eigen::Vector3d e = w / s;
-      const Eigen::Vector3d e_dot = (-c_dot * axis_world - c * b_dot) / s + e * (c * c_dot / (s * s));
+      const Eigen::Vector3d e_dot =
+          (-c_dot * axis_world - c * b_dot) / s + e * (c * c_dot / (s * s));
       return -lens.half_width() * e_dot;
     }
   }

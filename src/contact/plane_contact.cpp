@@ -59,8 +59,17 @@ OdeState encode(const PlaneContactKinematics& k) {
   const Eigen::Quaterniond& q = k.orientation;
   const Vector3& v = k.velocity_world;
   const Vector3& w = k.angular_velocity_world;
-  return {k.position_world.x(), k.position_world.y(), q.w(), q.x(), q.y(), q.z(), v.x(), v.y(),
-          w.x(), w.y(), w.z()};
+  return {k.position_world.x(),
+          k.position_world.y(),
+          q.w(),
+          q.x(),
+          q.y(),
+          q.z(),
+          v.x(),
+          v.y(),
+          w.x(),
+          w.y(),
+          w.z()};
 }
 
 PlaneContactKinematics decode(const PlaneContactSetup& setup, const PlaneContactMode& mode,
@@ -76,7 +85,7 @@ Vector3 horizontal_unit(double angle) { return {std::cos(angle), std::sin(angle)
 // A piece of the trajectory for state_at: one integrator step (or its part before an event), or
 // the single state right after an event.
 struct Segment {
-  double t_begin = 0.0, t_end = 0.0;    // valid range
+  double t_begin = 0.0, t_end = 0.0;  // valid range
   double energy_begin = 0.0;  // guarded energy at the step's start, J: the cap of its samples
   PlaneContactMode mode;
   std::shared_ptr<const DenseStepper> dense;  // null: `point` holds the state
@@ -92,8 +101,8 @@ struct PendingEvent {
 // a few ulps of a time of hours.
 struct TimeTolerance {
   bool operator()(double a, double b) const {
-    return std::abs(b - a) <= 1e-15 + 4 * std::numeric_limits<double>::epsilon() *
-                                          std::max(std::abs(a), std::abs(b));
+    return std::abs(b - a) <=
+           1e-15 + 4 * std::numeric_limits<double>::epsilon() * std::max(std::abs(a), std::abs(b));
   }
 };
 
@@ -101,18 +110,30 @@ struct TimeTolerance {
 
 const char* plane_contact_event_name(PlaneContactEvent event) {
   switch (event) {
-    case PlaneContactEvent::none: return "none";
-    case PlaneContactEvent::slip_stop: return "slip_stop";
-    case PlaneContactEvent::slip_start: return "slip_start";
-    case PlaneContactEvent::roll_stop: return "roll_stop";
-    case PlaneContactEvent::roll_start: return "roll_start";
-    case PlaneContactEvent::spin_stop: return "spin_stop";
-    case PlaneContactEvent::spin_start: return "spin_start";
-    case PlaneContactEvent::cap_to_rim: return "cap_to_rim";
-    case PlaneContactEvent::rim_to_cap: return "rim_to_cap";
-    case PlaneContactEvent::lift_off: return "lift_off";
-    case PlaneContactEvent::left_region: return "left_region";
-    case PlaneContactEvent::rest: return "rest";
+    case PlaneContactEvent::none:
+      return "none";
+    case PlaneContactEvent::slip_stop:
+      return "slip_stop";
+    case PlaneContactEvent::slip_start:
+      return "slip_start";
+    case PlaneContactEvent::roll_stop:
+      return "roll_stop";
+    case PlaneContactEvent::roll_start:
+      return "roll_start";
+    case PlaneContactEvent::spin_stop:
+      return "spin_stop";
+    case PlaneContactEvent::spin_start:
+      return "spin_start";
+    case PlaneContactEvent::cap_to_rim:
+      return "cap_to_rim";
+    case PlaneContactEvent::rim_to_cap:
+      return "rim_to_cap";
+    case PlaneContactEvent::lift_off:
+      return "lift_off";
+    case PlaneContactEvent::left_region:
+      return "left_region";
+    case PlaneContactEvent::rest:
+      return "rest";
   }
   return "unknown";
 }
@@ -161,8 +182,8 @@ class PlaneContact::Impl {
   EventValues event_values(const PlaneContactKinematics& k, const PlaneContactMode& mode) const;
   double event_value(Trigger trigger, const PlaneContactKinematics& k,
                      const PlaneContactMode& mode) const;
-  Choice choose_mode(const PlaneContactKinematics& k, LensPart part,
-                     std::optional<Trigger> snap, std::optional<Trigger> release) const;
+  Choice choose_mode(const PlaneContactKinematics& k, LensPart part, std::optional<Trigger> snap,
+                     std::optional<Trigger> release) const;
   Vector3 release_direction(const PlaneContactMode& mode, const PlaneContactKinematics& k,
                             bool tangential, const Vector3& hint) const;
   bool is_static(const PlaneContactKinematics& k, PlaneContactMode* stuck_mode) const;
@@ -180,10 +201,10 @@ class PlaneContact::Impl {
   mutable PlaneContactCounters counters_;  // also counts the solves of const look-ups
 
   PlaneContactMode mode_;
-  OdeState y_{};              // integrated state at t_ (the end of the last step)
-  double t_ = 0.0;            // integrator time
-  double energy_cap_ = 0.0;   // guarded energy at t_, J
-  EventValues g_start_;       // event values at t_
+  OdeState y_{};             // integrated state at t_ (the end of the last step)
+  double t_ = 0.0;           // integrator time
+  double energy_cap_ = 0.0;  // guarded energy at t_, J
+  EventValues g_start_;      // event values at t_
   DenseStepper dense_;
   bool stepper_ready_ = false;
   double dt_ = 0.0;
@@ -228,10 +249,10 @@ PlaneContact::Impl::Impl(const PlaneContactSetup& setup, const PlaneRegion& regi
   const Vector3 axis = state.orientation * Vector3::UnitZ();
   const double gap = state.position_world.z() - setup.plane_height_m - lens.reach(axis.z());
   if (!(std::abs(gap) <= options.gap_tolerance_m)) {
-    throw InvalidArgument("contact start state: gap to the plane z = " +
-                          format_value(setup.plane_height_m) + " m is " + format_value(gap) +
-                          " m, must be within +/-" + format_value(options.gap_tolerance_m) +
-                          " m (the stone must touch the plane)");
+    throw InvalidArgument(
+        "contact start state: gap to the plane z = " + format_value(setup.plane_height_m) +
+        " m is " + format_value(gap) + " m, must be within +/-" +
+        format_value(options.gap_tolerance_m) + " m (the stone must touch the plane)");
   }
   const Vector3 omega =
       setup.model.angular_velocity_world(state.orientation, state.angular_momentum_world);
@@ -251,15 +272,15 @@ PlaneContact::Impl::Impl(const PlaneContactSetup& setup, const PlaneRegion& regi
   }
   const Vector3 contact_point = k.position_world + k.offset_world;
   if (!region.contains(contact_point.head<2>())) {
-    throw InvalidArgument("contact start state: the contact point " +
-                          format_vector(contact_point) + " is outside the plane's region");
+    throw InvalidArgument("contact start state: the contact point " + format_vector(contact_point) +
+                          " is outside the plane's region");
   }
   // Remove u_n by a plastic normal impulse (M-orthogonal projection: energy can only fall), then
   // never let the imposed height raise the energy above the given state's.
   const double m = setup.model.mass_properties().mass();
-  const double energy_in =
-      0.5 * m * state.velocity_world.squaredNorm() + 0.5 * omega.dot(k.inertia_world * omega) -
-      m * setup.gravity_world.dot(state.position_world);
+  const double energy_in = 0.5 * m * state.velocity_world.squaredNorm() +
+                           0.5 * omega.dot(k.inertia_world * omega) -
+                           m * setup.gravity_world.dot(state.position_world);
   k = projected(k, mode);
   k = capped(k, mode, energy_in);
 
@@ -290,8 +311,10 @@ PlaneContactForces PlaneContact::Impl::solve(const PlaneContactMode& mode,
   if (!f.solved) {
     // A singular constraint system (for instance Painleve's paradox at an absurd friction
     // coefficient): no consistent contact force exists in this mode.
-    throw IntegrationError("plane contact: no consistent contact force (singular constraint "
-                           "system) at axis " + format_vector(k.axis_world));
+    throw IntegrationError(
+        "plane contact: no consistent contact force (singular constraint "
+        "system) at axis " +
+        format_vector(k.axis_world));
   }
   return f;
 }
@@ -317,16 +340,15 @@ void PlaneContact::Impl::rhs(const OdeState& y, OdeState& dydt) {
 }
 
 PlaneContactKinematics PlaneContact::Impl::capped(const PlaneContactKinematics& k,
-                                                  const PlaneContactMode& mode,
-                                                  double cap) const {
+                                                  const PlaneContactMode& mode, double cap) const {
   const double e = energy(k);
   if (e <= cap) return k;
   const double m = setup_.model.mass_properties().mass();
   const double potential = -m * setup_.gravity_world.dot(k.position_world);
   const double kinetic = e - potential;
   // Differences at the round-off of the energy's own evaluation are not a rise.
-  const double round_off = 8 * std::numeric_limits<double>::epsilon() *
-                           (std::abs(potential) + std::abs(kinetic));
+  const double round_off =
+      8 * std::numeric_limits<double>::epsilon() * (std::abs(potential) + std::abs(kinetic));
   if (e <= cap + round_off) return k;
   // Scale (v_t, omega): every derived velocity is linear and homogeneous in them, so u = 0 holds.
   // When even zero motion would exceed the cap (at a turning point), the energy removed is at
@@ -364,8 +386,7 @@ PlaneContactKinematics PlaneContact::Impl::projected(const PlaneContactKinematic
   if (mode.spinning.law == ContactLaw::stuck) angular(Vector3::UnitZ());
   j.conservativeResize(n, 6);
   Eigen::Matrix<double, 6, 6> m_inv = Eigen::Matrix<double, 6, 6>::Zero();
-  m_inv.topLeftCorner<3, 3>() =
-      Eigen::Matrix3d::Identity() / setup_.model.mass_properties().mass();
+  m_inv.topLeftCorner<3, 3>() = Eigen::Matrix3d::Identity() / setup_.model.mass_properties().mass();
   m_inv.bottomRightCorner<3, 3>() = k.inverse_inertia_world;
   Eigen::Matrix<double, 6, 1> nu;
   nu << k.velocity_world, k.angular_velocity_world;
@@ -374,8 +395,8 @@ PlaneContactKinematics PlaneContact::Impl::projected(const PlaneContactKinematic
   const auto w = (j * m_inv * j.transpose()).eval();
   const auto impulse = w.fullPivLu().solve(j * nu).eval();
   nu -= m_inv * j.transpose() * impulse;
-  PlaneContactKinematics out = plane_contact_kinematics(
-      setup_, mode, k.position_world.head<2>(), k.orientation, nu.head<2>(), nu.tail<3>());
+  PlaneContactKinematics out = plane_contact_kinematics(setup_, mode, k.position_world.head<2>(),
+                                                        k.orientation, nu.head<2>(), nu.tail<3>());
   return capped(out, mode, energy(k));
 }
 
@@ -386,10 +407,13 @@ double PlaneContact::Impl::event_value(Trigger trigger, const PlaneContactKinema
   switch (trigger) {
     case Trigger::part_switch:
       switch (mode.part) {
-        case LensPart::bottom_cap: return k.axis_world.z() - cos_beta;
-        case LensPart::top_cap: return -k.axis_world.z() - cos_beta;
+        case LensPart::bottom_cap:
+          return k.axis_world.z() - cos_beta;
+        case LensPart::top_cap:
+          return -k.axis_world.z() - cos_beta;
         case LensPart::rim:
-        default: return cos_beta - std::abs(k.axis_world.z());
+        default:
+          return cos_beta - std::abs(k.axis_world.z());
       }
     case Trigger::region:
       return region_.margin_m((k.position_world + k.offset_world).head<2>());
@@ -404,14 +428,16 @@ double PlaneContact::Impl::event_value(Trigger trigger, const PlaneContactKinema
   }
   const PlaneContactForces f = solve(mode, k);
   switch (trigger) {
-    case Trigger::lift_off: return f.normal_force_n;
+    case Trigger::lift_off:
+      return f.normal_force_n;
     case Trigger::tangential_bound:
       return law.friction * f.normal_force_n - f.friction_force_world.norm();
     case Trigger::rolling_bound:
       return law.rolling_resistance_m * f.normal_force_n - f.rolling_couple_world.norm();
     case Trigger::spinning_bound:
       return law.spinning_friction_m * f.normal_force_n - std::abs(f.spinning_couple_nm);
-    default: return 0.0;
+    default:
+      return 0.0;
   }
 }
 
@@ -435,8 +461,7 @@ EventValues PlaneContact::Impl::event_values(const PlaneContactKinematics& k,
   if (mode.tangential.law == ContactLaw::sliding) {
     set(Trigger::tangential_zero, k.slip_velocity().dot(mode.tangential.reference_world));
   } else if (mode.tangential.law == ContactLaw::stuck) {
-    set(Trigger::tangential_bound,
-        law.friction * f.normal_force_n - f.friction_force_world.norm());
+    set(Trigger::tangential_bound, law.friction * f.normal_force_n - f.friction_force_world.norm());
   }
   if (mode.rolling.law == ContactLaw::sliding) {
     set(Trigger::rolling_zero, k.rolling_velocity().dot(mode.rolling.reference_world));
@@ -536,9 +561,9 @@ PlaneContact::Impl::Choice PlaneContact::Impl::choose_mode(const PlaneContactKin
   const ContactMaterial& law = setup_.material;
   Choice c;
   c.mode.part = part;
-  PlaneContactKinematics k = plane_contact_kinematics(
-      setup_, c.mode, k_in.position_world.head<2>(), k_in.orientation,
-      k_in.velocity_world.head<2>(), k_in.angular_velocity_world);
+  PlaneContactKinematics k =
+      plane_contact_kinematics(setup_, c.mode, k_in.position_world.head<2>(), k_in.orientation,
+                               k_in.velocity_world.head<2>(), k_in.angular_velocity_world);
   // The hint for a released part: the reverse of the force it needed while stuck.
   Vector3 release_hint = Vector3::UnitX();
   double spin_release_sign = 1.0;
@@ -614,9 +639,9 @@ PlaneContact::Impl::Choice PlaneContact::Impl::choose_mode(const PlaneContactKin
     for (int i = 0; i < 3; ++i) {
       if (parts[i].part->law != ContactLaw::stuck) continue;
       const double limit = parts[i].bound * n;
-      const double ratio = limit > 0.0 ? needed[i] / limit
-                                       : (needed[i] > 0.0 ? std::numeric_limits<double>::max()
-                                                          : 0.0);
+      const double ratio = limit > 0.0
+                               ? needed[i] / limit
+                               : (needed[i] > 0.0 ? std::numeric_limits<double>::max() : 0.0);
       if (ratio > worst_ratio) {
         worst_ratio = ratio;
         worst = i;
@@ -665,7 +690,8 @@ void PlaneContact::Impl::refresh_references() {
   };
   refresh(mode_.tangential, k.slip_velocity(), kSlipDirectionLayer);
   refresh(mode_.rolling, k.rolling_velocity(), kRollDirectionLayer);
-  if (mode_.spinning.law == ContactLaw::sliding && std::abs(k.spin_velocity()) > kZeroAngularSpeed) {
+  if (mode_.spinning.law == ContactLaw::sliding &&
+      std::abs(k.spin_velocity()) > kZeroAngularSpeed) {
     mode_.spinning.reference_world = Vector3(0.0, 0.0, k.spin_velocity() > 0.0 ? 1.0 : -1.0);
   }
   // The zero-crossing events restart from |v| > 0 with the new references.
@@ -770,8 +796,8 @@ PlaneContact::Impl::Sample PlaneContact::Impl::sample(double t) const {
     return {capped(k, it->mode, it->energy_begin), it->mode};
   }
   throw InvalidArgument("contact state requested at t = " + format_value(t) +
-                        " s, outside the available range [" + format_value(window_start_) +
-                        ", " + format_value(reached_) + "] s");
+                        " s, outside the available range [" + format_value(window_start_) + ", " +
+                        format_value(reached_) + "] s");
 }
 
 RigidBodyState PlaneContact::Impl::to_rigid_body_state(const Sample& s) const {
@@ -801,8 +827,8 @@ void PlaneContact::Impl::require_sample_time(double t) const {
   if (finished_ && finished_->event == PlaneContactEvent::rest && t >= finished_->time) return;
   if (!(t >= window_start_ && t <= reached_)) {
     throw InvalidArgument("contact state requested at t = " + format_value(t) +
-                          " s, outside the available range [" + format_value(window_start_) +
-                          ", " + format_value(reached_) + "] s");
+                          " s, outside the available range [" + format_value(window_start_) + ", " +
+                          format_value(reached_) + "] s");
   }
 }
 
@@ -835,8 +861,10 @@ std::optional<PlaneContactOutcome> PlaneContact::Impl::process(const PendingEven
   LensPart part = old_mode.part;
   std::optional<Trigger> snap, release;
   switch (event.trigger) {
-    case Trigger::lift_off: return finish(PlaneContactEvent::lift_off, before);
-    case Trigger::region: return finish(PlaneContactEvent::left_region, before);
+    case Trigger::lift_off:
+      return finish(PlaneContactEvent::lift_off, before);
+    case Trigger::region:
+      return finish(PlaneContactEvent::left_region, before);
     case Trigger::part_switch:
       if (old_mode.part == LensPart::rim) {
         part = before.kinematics.axis_world.z() > 0.0 ? LensPart::bottom_cap : LensPart::top_cap;
@@ -846,9 +874,18 @@ std::optional<PlaneContactOutcome> PlaneContact::Impl::process(const PendingEven
         kind = PlaneContactEvent::cap_to_rim;
       }
       break;
-    case Trigger::tangential_zero: snap = event.trigger; kind = PlaneContactEvent::slip_stop; break;
-    case Trigger::rolling_zero: snap = event.trigger; kind = PlaneContactEvent::roll_stop; break;
-    case Trigger::spinning_zero: snap = event.trigger; kind = PlaneContactEvent::spin_stop; break;
+    case Trigger::tangential_zero:
+      snap = event.trigger;
+      kind = PlaneContactEvent::slip_stop;
+      break;
+    case Trigger::rolling_zero:
+      snap = event.trigger;
+      kind = PlaneContactEvent::roll_stop;
+      break;
+    case Trigger::spinning_zero:
+      snap = event.trigger;
+      kind = PlaneContactEvent::spin_stop;
+      break;
     case Trigger::tangential_bound:
       release = event.trigger;
       kind = PlaneContactEvent::slip_start;
@@ -883,22 +920,20 @@ std::optional<PlaneContactOutcome> PlaneContact::Impl::process(const PendingEven
     if (before_law == after_law) return std::nullopt;
     return after_law == ContactLaw::stuck ? stop : start;
   };
-  for (const auto& c :
-       {changed(old_mode.tangential.law, mode_.tangential.law, PlaneContactEvent::slip_stop,
-                PlaneContactEvent::slip_start),
-        changed(old_mode.rolling.law, mode_.rolling.law, PlaneContactEvent::roll_stop,
-                PlaneContactEvent::roll_start),
-        changed(old_mode.spinning.law, mode_.spinning.law, PlaneContactEvent::spin_stop,
-                PlaneContactEvent::spin_start)}) {
+  for (const auto& c : {changed(old_mode.tangential.law, mode_.tangential.law,
+                                PlaneContactEvent::slip_stop, PlaneContactEvent::slip_start),
+                        changed(old_mode.rolling.law, mode_.rolling.law,
+                                PlaneContactEvent::roll_stop, PlaneContactEvent::roll_start),
+                        changed(old_mode.spinning.law, mode_.spinning.law,
+                                PlaneContactEvent::spin_stop, PlaneContactEvent::spin_start)}) {
     if (c && (kind == PlaneContactEvent::none || *c == kind)) return outcome(t, *c, after);
   }
-  for (const auto& c :
-       {changed(old_mode.tangential.law, mode_.tangential.law, PlaneContactEvent::slip_stop,
-                PlaneContactEvent::slip_start),
-        changed(old_mode.rolling.law, mode_.rolling.law, PlaneContactEvent::roll_stop,
-                PlaneContactEvent::roll_start),
-        changed(old_mode.spinning.law, mode_.spinning.law, PlaneContactEvent::spin_stop,
-                PlaneContactEvent::spin_start)}) {
+  for (const auto& c : {changed(old_mode.tangential.law, mode_.tangential.law,
+                                PlaneContactEvent::slip_stop, PlaneContactEvent::slip_start),
+                        changed(old_mode.rolling.law, mode_.rolling.law,
+                                PlaneContactEvent::roll_stop, PlaneContactEvent::roll_start),
+                        changed(old_mode.spinning.law, mode_.spinning.law,
+                                PlaneContactEvent::spin_stop, PlaneContactEvent::spin_start)}) {
     if (c) return outcome(t, *c, after);
   }
   return outcome(t, kind, after);

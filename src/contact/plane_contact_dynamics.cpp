@@ -101,14 +101,14 @@ PlaneContactForces solve_plane_contact(const PlaneContactSetup& setup, const Pla
   double spin_sign = 0.0;
   Column normal{ez, Vector3::Zero()};
   if (mode.tangential.law == ContactLaw::sliding) {
-    tangential_direction = sliding_direction(k.slip_velocity(), mode.tangential.reference_world,
-                                             kSlipDirectionLayer);
+    tangential_direction =
+        sliding_direction(k.slip_velocity(), mode.tangential.reference_world, kSlipDirectionLayer);
     normal.force -= law.friction * tangential_direction;
   }
   normal.torque = r.cross(normal.force);
   if (mode.rolling.law == ContactLaw::sliding) {
-    rolling_direction = sliding_direction(k.rolling_velocity(), mode.rolling.reference_world,
-                                          kRollDirectionLayer);
+    rolling_direction =
+        sliding_direction(k.rolling_velocity(), mode.rolling.reference_world, kRollDirectionLayer);
     normal.torque -= law.rolling_resistance_m * rolling_direction;
   }
   if (mode.spinning.law == ContactLaw::sliding) {
@@ -185,8 +185,8 @@ PlaneContactForces solve_plane_contact(const PlaneContactSetup& setup, const Pla
   } else if (mode.spinning.law == ContactLaw::sliding) {
     f.spinning_couple_nm = -law.spinning_friction_m * normal_force * spin_sign;
   }
-  const Vector3 u_dot = f.linear_acceleration_world + f.angular_acceleration_world.cross(r) +
-                        w_cross_r_dot;
+  const Vector3 u_dot =
+      f.linear_acceleration_world + f.angular_acceleration_world.cross(r) + w_cross_r_dot;
   f.slip_acceleration_world = Vector3(u_dot.x(), u_dot.y(), 0.0);
   return f;
 }

@@ -198,7 +198,8 @@ class PlanarCap {
 // `breaks` (in (theta, theta0)) split the quadrature where V or M have a kink.
 inline double time_from_turning_point(const std::function<double(double)>& inertia,
                                       const std::function<double(double, double, double)>& drop,
-                                      double theta0, double theta, std::vector<double> breaks = {}) {
+                                      double theta0, double theta,
+                                      std::vector<double> breaks = {}) {
   auto integrand = [&](double phi) {
     const double th = theta0 * std::sin(phi);
     const double half = std::sin(M_PI / 4 - phi / 2);  // theta0 - th = 2 theta0 half^2

@@ -4,7 +4,6 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
-
 #include <cmath>
 #include <random>
 
@@ -43,7 +42,7 @@ TEST(LensOnPlane, OffsetIsTheLowestPointOfTheLens) {
     EXPECT_NEAR(-r.z(), kLens.reach(b.z()), 1e-17);
   }
   EXPECT_LT(worst, 1e-16);  // a few ulps of 15 mm
-  EXPECT_GT(rims, 200);  // the sample covers the rim too
+  EXPECT_GT(rims, 200);     // the sample covers the rim too
 }
 
 TEST(LensOnPlane, OffsetRateMatchesFiniteDifferencesAlongARotation) {
@@ -63,7 +62,8 @@ TEST(LensOnPlane, OffsetRateMatchesFiniteDifferencesAlongARotation) {
     };
     const Eigen::Vector3d fd = (offset_at(h) - offset_at(-h)) / (2 * h);
     const Eigen::Vector3d rate = vg::plane_contact_offset_rate_world(kLens, part, b, omega);
-    worst_relative = std::max(worst_relative, (fd - rate).norm() / (kLens.half_width() * omega.norm()));
+    worst_relative =
+        std::max(worst_relative, (fd - rate).norm() / (kLens.half_width() * omega.norm()));
   }
   EXPECT_LT(worst_relative, 1e-7);
 }

@@ -75,7 +75,9 @@ vg::RigidBodyState on_plane(const vg::MotionModel& model, const Quaterniond& q, 
   return s;
 }
 
-Quaterniond tilt_about_y(double theta) { return Quaterniond(Eigen::AngleAxisd(theta, Vector3d::UnitY())); }
+Quaterniond tilt_about_y(double theta) {
+  return Quaterniond(Eigen::AngleAxisd(theta, Vector3d::UnitY()));
+}
 
 double tilt_of(const vg::RigidBodyState& s) {
   const Vector3d b = s.orientation * Vector3d::UnitZ();
@@ -114,7 +116,7 @@ struct Trace {
 };
 
 Trace trace(vg::PlaneContact& phase, const vg::MotionModel& model, double t_end, double dt,
-        double h0 = 0.0, const std::function<void(double, double)>& between = nullptr) {
+            double h0 = 0.0, const std::function<void(double, double)>& between = nullptr) {
   Trace out;
   double e_previous = energy_of(model, phase.state_at(phase.time_reached()));
   const double e_start = e_previous;
@@ -156,8 +158,8 @@ struct Crossing {
   double t;
   vg::RigidBodyState s;
 };
-std::vector<Crossing> crossings(vg::PlaneContact& phase, const vg::MotionModel& model,
-                                double t_end, double dt,
+std::vector<Crossing> crossings(vg::PlaneContact& phase, const vg::MotionModel& model, double t_end,
+                                double dt,
                                 const std::function<double(const vg::RigidBodyState&)>& f,
                                 Trace* record = nullptr, double h0 = 0.0) {
   std::vector<Crossing> out;
@@ -215,11 +217,9 @@ TEST(PlaneContact, SlideWithRotationFrozenStopsAtTheTextbookDistanceAndTime) {
   const auto model = frozen_rotation_model();
   for (const Vector2d& direction : {Vector2d(1, 0), Vector2d(0.6, -0.8)}) {
     const Vector2d x0(0.01, 0.02);
-    vg::PlaneContact phase(model, kLens, kGravity, 0.0, vg::PlaneRegion::whole_plane(),
-                           material(mu, 0, 0),
-                           on_plane(model, Quaterniond::Identity(), x0, v0 * direction,
-                                    Vector3d::Zero()),
-                           0.0);
+    vg::PlaneContact phase(
+        model, kLens, kGravity, 0.0, vg::PlaneRegion::whole_plane(), material(mu, 0, 0),
+        on_plane(model, Quaterniond::Identity(), x0, v0 * direction, Vector3d::Zero()), 0.0);
     const Trace r = trace(phase, model, 1.0, 0.01);
     ASSERT_FALSE(r.events.empty());
     const auto& stop = r.events.back();
@@ -249,11 +249,10 @@ TEST(PlaneContact, FreeLensSlidingPitchesAndStopsAsThePlanarModelSays) {
   // forward; slip ends, then it rolls (rocks) without slipping.
   const double mu = 0.3, v0 = 0.5;
   const auto model = stone_model();
-  vg::PlaneContact phase(model, kLens, kGravity, 0.0, vg::PlaneRegion::whole_plane(),
-                         material(mu, 0, 0),
-                         on_plane(model, Quaterniond::Identity(), Vector2d::Zero(),
-                                  Vector2d(v0, 0), Vector3d::Zero()),
-                         0.0);
+  vg::PlaneContact phase(
+      model, kLens, kGravity, 0.0, vg::PlaneRegion::whole_plane(), material(mu, 0, 0),
+      on_plane(model, Quaterniond::Identity(), Vector2d::Zero(), Vector2d(v0, 0), Vector3d::Zero()),
+      0.0);
   // The reference: the planar model, RK4 with 2 us steps.
   const ref::PlanarCap planar(kM, kI1, kR, kD, kG, mu, 0.0);
   ref::PlanarCap::Mode mode;
@@ -347,18 +346,17 @@ TEST(PlaneContact, SmallRockingPeriodsRollingAndFrictionless) {
                                       Vector2d::Zero(), Vector3d::Zero()),
                              0.0);
       Trace r;
-      const auto zeros = crossings(phase, model, 0.7, 1e-3,
-                                   [](const vg::RigidBodyState& s) { return tilt_of(s); }, &r);
+      const auto zeros = crossings(
+          phase, model, 0.7, 1e-3, [](const vg::RigidBodyState& s) { return tilt_of(s); }, &r);
       const double period = measured_period(zeros);
       // Exact period of the rigid model at this amplitude: the energy integral.
-      const double exact =
-          mu > 0 ? ref::oscillation_period(rolling_inertia, cap_drop, theta0)
-                 : ref::oscillation_period(
-                       [](double th) {
-                         const double s = kD * std::sin(th);
-                         return kI1 + kM * s * s;
-                       },
-                       cap_drop, theta0);
+      const double exact = mu > 0 ? ref::oscillation_period(rolling_inertia, cap_drop, theta0)
+                                  : ref::oscillation_period(
+                                        [](double th) {
+                                          const double s = kD * std::sin(th);
+                                          return kI1 + kM * s * s;
+                                        },
+                                        cap_drop, theta0);
       EXPECT_NEAR(period, exact, 1e-11 * exact) << mu << " " << theta0;
       if (theta0 < kDeg) {
         EXPECT_NEAR(period, mu > 0 ? t_rolling : t_frictionless, 3e-6);
@@ -388,16 +386,15 @@ TEST(PlaneContact, RockingWithRollingResistanceDecaysLinearlyAndComesToExactRest
   const double l_r = 2e-6, theta0 = 0.3 * kDeg;
   EXPECT_NEAR(2 * l_r / kD / kDeg, 0.0211, 1e-4);
   const auto model = stone_model();
-  vg::PlaneContact phase(model, kLens, kGravity, 0.0, vg::PlaneRegion::whole_plane(),
-                         material(0.3, l_r, 0.0),
-                         on_plane(model, tilt_about_y(theta0), Vector2d::Zero(), Vector2d::Zero(),
-                                  Vector3d::Zero()),
-                         0.0);
+  vg::PlaneContact phase(
+      model, kLens, kGravity, 0.0, vg::PlaneRegion::whole_plane(), material(0.3, l_r, 0.0),
+      on_plane(model, tilt_about_y(theta0), Vector2d::Zero(), Vector2d::Zero(), Vector3d::Zero()),
+      0.0);
   // Turning points: zeros of the rocking rate omega_y.
   Trace r;
-  const auto turns = crossings(phase, model, 3.0, 1e-3,
-                               [&](const vg::RigidBodyState& s) { return omega_of(model, s).y(); },
-                               &r);
+  const auto turns = crossings(
+      phase, model, 3.0, 1e-3, [&](const vg::RigidBodyState& s) { return omega_of(model, s).y(); },
+      &r);
   ASSERT_EQ(r.last.event, vg::PlaneContactEvent::rest);
   const double rest_time = r.last.time_s;
   // The planar reference with the same law.
@@ -406,7 +403,8 @@ TEST(PlaneContact, RockingWithRollingResistanceDecaysLinearlyAndComesToExactRest
   mode.tangential = ref::PlanarCap::Tangential::stick;
   mode.rolling = ref::PlanarCap::Rolling::stuck;
   mode = planar.choose({0, theta0, 0, 0}, mode, false, false);
-  const auto ref_events = planar.run({0, theta0, 0, 0}, mode, 3.0, 1e-5, [](double, const auto&) {});
+  const auto ref_events =
+      planar.run({0, theta0, 0, 0}, mode, 3.0, 1e-5, [](double, const auto&) {});
   std::vector<double> ref_amplitudes{theta0};
   for (const auto& e : ref_events) ref_amplitudes.push_back(std::abs(e.state.theta));
   // Amplitudes at the turning points: the initial tilt, then every turn.
@@ -454,10 +452,13 @@ TEST(PlaneContact, RockingWithRollingResistanceDecaysLinearlyAndComesToExactRest
   expect_energy_never_rises(r);
   report("rolling resistance: half cycles to rest", half_cycles);
   report("rolling resistance: worst decrement vs 2 l_r/d (relative)", worst_decrement_error);
-  report("rolling resistance: worst turning amplitude - planar reference (rad)", worst_vs_reference);
+  report("rolling resistance: worst turning amplitude - planar reference (rad)",
+         worst_vs_reference);
   report("rolling resistance: rest time (s)", rest_time);
-  report("rolling resistance: rest time - planar reference (s)", rest_time - ref_events.back().time);
-  report("rolling resistance: residual tilt / (l_r/d)", std::abs(tilt_of(r.last.state)) / (l_r / kD));
+  report("rolling resistance: rest time - planar reference (s)",
+         rest_time - ref_events.back().time);
+  report("rolling resistance: residual tilt / (l_r/d)",
+         std::abs(tilt_of(r.last.state)) / (l_r / kD));
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -541,7 +542,8 @@ TEST(PlaneContact, JellettsIntegralIsConservedThroughSlidingAndRolling) {
   // J = L . (x_G - P) is conserved for any force at P (its torque is normal to r) on a cap:
   // a tilted, spinning, sliding stone that then sticks and rolls (no couples).
   const auto model = stone_model();
-  const Quaterniond q = Quaterniond(Eigen::AngleAxisd(0.4, Vector3d::UnitZ())) * tilt_about_y(12 * kDeg);
+  const Quaterniond q =
+      Quaterniond(Eigen::AngleAxisd(0.4, Vector3d::UnitZ())) * tilt_about_y(12 * kDeg);
   const Vector3d b = q * Vector3d::UnitZ();
   const Vector3d omega = 40.0 * b + Vector3d(3.0, -2.0, 0.0);
   vg::PlaneContact phase(model, kLens, kGravity, 0.0, vg::PlaneRegion::whole_plane(),
@@ -554,7 +556,8 @@ TEST(PlaneContact, JellettsIntegralIsConservedThroughSlidingAndRolling) {
   const Trace r = trace(phase, model, 1.0, 1e-3);
   double worst = 0;
   bool stuck_seen = false;
-  for (std::size_t i = 0; i < r.t.size(); ++i) worst = std::max(worst, std::abs(jellett(r.s[i]) - j0));
+  for (std::size_t i = 0; i < r.t.size(); ++i)
+    worst = std::max(worst, std::abs(jellett(r.s[i]) - j0));
   for (const auto& e : r.events) {
     stuck_seen |= e.event == vg::PlaneContactEvent::slip_stop;
     EXPECT_NE(e.mode.part, vg::LensPart::rim);
@@ -565,7 +568,8 @@ TEST(PlaneContact, JellettsIntegralIsConservedThroughSlidingAndRolling) {
   expect_energy_never_rises(r);
   report("Jellett: worst |J - J0| / |J0|", worst / std::abs(j0));
   for (const auto& e : r.events) {
-    std::cout << "[ event    ] " << e.time_s << " " << vg::plane_contact_event_name(e.event) << "\n";
+    std::cout << "[ event    ] " << e.time_s << " " << vg::plane_contact_event_name(e.event)
+              << "\n";
   }
   report_cost("sliding+spinning tilted (Jellett case)", phase.counters(), 1.0);
 }
@@ -600,15 +604,15 @@ TEST(PlaneContact, FrictionlessRockingAcrossTheCapRimSwitch) {
   const double theta0 = 60 * kDeg, beta = std::acos(kD / kR);
   EXPECT_NEAR(beta / kDeg, 45.388, 1e-3);
   const auto model = stone_model();
-  const auto start = on_plane(model, tilt_about_y(theta0), Vector2d::Zero(), Vector2d::Zero(),
-                              Vector3d::Zero());
+  const auto start =
+      on_plane(model, tilt_about_y(theta0), Vector2d::Zero(), Vector2d::Zero(), Vector3d::Zero());
   vg::PlaneContact phase(model, kLens, kGravity, 0.0, vg::PlaneRegion::whole_plane(),
                          material(0, 0, 0), start, 0.0);
   EXPECT_EQ(phase.mode().part, vg::LensPart::rim);
-  const double quarter = ref::time_from_turning_point(frictionless_inertia, frictionless_drop,
-                                                      theta0, 0.0, {beta});
-  const double to_switch = ref::time_from_turning_point(frictionless_inertia, frictionless_drop,
-                                                        theta0, beta);
+  const double quarter =
+      ref::time_from_turning_point(frictionless_inertia, frictionless_drop, theta0, 0.0, {beta});
+  const double to_switch =
+      ref::time_from_turning_point(frictionless_inertia, frictionless_drop, theta0, beta);
   // Switch times within two periods: t = k T/2 +/- to_switch.
   std::vector<double> expected;
   for (int k = 0; k < 4; ++k) {
@@ -617,13 +621,14 @@ TEST(PlaneContact, FrictionlessRockingAcrossTheCapRimSwitch) {
   }
   std::sort(expected.begin(), expected.end());
   Trace r;
-  const auto zeros = crossings(phase, model, 8 * quarter - 1e-3, 1e-3,
-                               [](const vg::RigidBodyState& s) { return tilt_of(s); }, &r);
+  const auto zeros = crossings(
+      phase, model, 8 * quarter - 1e-3, 1e-3,
+      [](const vg::RigidBodyState& s) { return tilt_of(s); }, &r);
   ASSERT_EQ(r.events.size(), expected.size());
   double worst_time = 0;
   for (std::size_t i = 0; i < r.events.size(); ++i) {
-    EXPECT_EQ(r.events[i].event, i % 2 == 0 ? vg::PlaneContactEvent::rim_to_cap
-                                            : vg::PlaneContactEvent::cap_to_rim);
+    EXPECT_EQ(r.events[i].event,
+              i % 2 == 0 ? vg::PlaneContactEvent::rim_to_cap : vg::PlaneContactEvent::cap_to_rim);
     worst_time = std::max(worst_time, std::abs(r.events[i].time_s - expected[i]));
     EXPECT_NEAR(std::abs(tilt_of(r.events[i].state)), beta, 1e-12);
   }
@@ -695,11 +700,10 @@ TEST(PlaneContact, LowFrictionRockingSlipsAndSticksAsThePlanarModelSays) {
   // contact point slips, sticks again, slips... Every mode change against the planar model.
   const double mu = 0.1, theta0 = 25 * kDeg;
   const auto model = stone_model();
-  vg::PlaneContact phase(model, kLens, kGravity, 0.0, vg::PlaneRegion::whole_plane(),
-                         material(mu, 0, 0),
-                         on_plane(model, tilt_about_y(theta0), Vector2d::Zero(), Vector2d::Zero(),
-                                  Vector3d::Zero()),
-                         0.0);
+  vg::PlaneContact phase(
+      model, kLens, kGravity, 0.0, vg::PlaneRegion::whole_plane(), material(mu, 0, 0),
+      on_plane(model, tilt_about_y(theta0), Vector2d::Zero(), Vector2d::Zero(), Vector3d::Zero()),
+      0.0);
   const ref::PlanarCap planar(kM, kI1, kR, kD, kG, mu, 0.0);
   ref::PlanarCap::Mode mode;
   mode.tangential = ref::PlanarCap::Tangential::stick;
@@ -720,7 +724,8 @@ TEST(PlaneContact, LowFrictionRockingSlipsAndSticksAsThePlanarModelSays) {
     EXPECT_EQ(r.events[i].event,
               sticks ? vg::PlaneContactEvent::slip_stop : vg::PlaneContactEvent::slip_start);
     worst_time = std::max(worst_time, std::abs(r.events[i].time_s - ref_events[i].time));
-    worst_x = std::max(worst_x, std::abs(r.events[i].state.position_world.x() - ref_events[i].state.x));
+    worst_x =
+        std::max(worst_x, std::abs(r.events[i].state.position_world.x() - ref_events[i].state.x));
   }
   EXPECT_LT(worst_time, 1e-10);
   EXPECT_LT(worst_x, 1e-12);
@@ -746,7 +751,8 @@ TEST(PlaneContact, LeavingTheBoardTopAndEnteringTheBoardsFootprintOnTheTable) {
   };
   const Case cases[] = {
       {board.top_z_m(), 0.19, vg::PlaneRegion::inside(Vector2d::Zero(), board.half_extent_m())},
-      {board.table_z_m(), -0.25, vg::PlaneRegion::outside(Vector2d::Zero(), board.half_extent_m())}};
+      {board.table_z_m(), -0.25,
+       vg::PlaneRegion::outside(Vector2d::Zero(), board.half_extent_m())}};
   for (const Case& c : cases) {
     const double distance = c.x0 < 0 ? -hx - c.x0 : hx - c.x0;
     const double t_cross = (v0 - std::sqrt(v0 * v0 - 2 * mu * kG * distance)) / (mu * kG);
@@ -771,17 +777,19 @@ TEST(PlaneContact, UpsideDownOnTheTableRocksLikeTheRightWayUp) {
   const double theta0 = 5 * kDeg, h0 = -0.1515;
   const Quaterniond upside_down =
       tilt_about_y(theta0) * Quaterniond(Eigen::AngleAxisd(M_PI, Vector3d::UnitX()));
-  vg::PlaneContact phase(model, kLens, kGravity, h0, vg::PlaneRegion::whole_plane(),
-                         material(0.3, 0, 0),
-                         on_plane(model, upside_down, Vector2d(0.3, 0.3), Vector2d::Zero(),
-                                  Vector3d::Zero(), h0),
-                         0.0);
+  vg::PlaneContact phase(
+      model, kLens, kGravity, h0, vg::PlaneRegion::whole_plane(), material(0.3, 0, 0),
+      on_plane(model, upside_down, Vector2d(0.3, 0.3), Vector2d::Zero(), Vector3d::Zero(), h0),
+      0.0);
   EXPECT_EQ(phase.mode().part, vg::LensPart::top_cap);
   Trace r;
-  const auto zeros = crossings(phase, model, 0.7, 1e-3, [](const vg::RigidBodyState& s) {
-    const Vector3d b = s.orientation * Vector3d::UnitZ();
-    return b.x();
-  }, &r, h0);
+  const auto zeros = crossings(
+      phase, model, 0.7, 1e-3,
+      [](const vg::RigidBodyState& s) {
+        const Vector3d b = s.orientation * Vector3d::UnitZ();
+        return b.x();
+      },
+      &r, h0);
   const double exact = ref::oscillation_period(rolling_inertia, cap_drop, theta0);
   EXPECT_NEAR(measured_period(zeros), exact, 1e-10);
   EXPECT_LT(r.worst_gap, 1e-16);
@@ -817,10 +825,10 @@ TEST(PlaneContact, BadInputIsRefusedByNameAndChangesNothing) {
   nan_state.velocity_world.x() = NAN;
   EXPECT_NE(message(nan_state, material(0.3, 0, 0), whole).find("velocity"), std::string::npos);
 
-  vg::PlaneContact phase(model, kLens, kGravity, 0.0, whole, material(0.3, 0, 0),
-                         on_plane(model, tilt_about_y(0.1), Vector2d::Zero(), Vector2d::Zero(),
-                                  Vector3d::Zero()),
-                         0.0);
+  vg::PlaneContact phase(
+      model, kLens, kGravity, 0.0, whole, material(0.3, 0, 0),
+      on_plane(model, tilt_about_y(0.1), Vector2d::Zero(), Vector2d::Zero(), Vector3d::Zero()),
+      0.0);
   phase.advance(0.05);
   const vg::RigidBodyState at = phase.state_at(0.05);
   EXPECT_THROW(phase.advance(NAN), vg::InvalidArgument);
@@ -852,7 +860,8 @@ TEST(PlaneContact, GeneralMotionSettlesToExactRestAndTheEnergyLostIsTheWorkOfThe
   // (Simpson between samples, from the contact forces and the states), plus the tiny snaps.
   const auto model = stone_model();
   const vg::ContactMaterial law;  // the defaults
-  const Quaterniond q = Quaterniond(Eigen::AngleAxisd(1.1, Vector3d::UnitZ())) * tilt_about_y(8 * kDeg);
+  const Quaterniond q =
+      Quaterniond(Eigen::AngleAxisd(1.1, Vector3d::UnitZ())) * tilt_about_y(8 * kDeg);
   const Vector3d b = q * Vector3d::UnitZ();
   const auto start = on_plane(model, q, Vector2d(0.05, -0.02), Vector2d(0.3, 0.1),
                               25.0 * b + Vector3d(2.0, -3.0, 0.0));
@@ -896,9 +905,11 @@ TEST(PlaneContact, GeneralMotionSettlesToExactRestAndTheEnergyLostIsTheWorkOfThe
   expect_energy_never_rises(r);
   report("settling: time to rest (s)", r.last.time_s);
   report("settling: reported events", static_cast<double>(r.events.size()));
-  report("settling: energy lost - dissipated work (relative)", (e0 - e_end - dissipated) / (e0 - e_end));
+  report("settling: energy lost - dissipated work (relative)",
+         (e0 - e_end - dissipated) / (e0 - e_end));
   for (const auto& e : r.events) {
-    std::cout << "[ event    ] " << e.time_s << " " << vg::plane_contact_event_name(e.event) << "\n";
+    std::cout << "[ event    ] " << e.time_s << " " << vg::plane_contact_event_name(e.event)
+              << "\n";
   }
   report_cost("settling (slide, spin, wobble to rest)", phase.counters(), r.last.time_s);
 }

@@ -47,8 +47,8 @@ double energy_rate(const vg::PlaneContactSetup& s, const vg::PlaneContactKinemat
                    const vg::PlaneContactForces& f) {
   const double m = s.model.mass_properties().mass();
   const Vector3d& w = k.angular_velocity_world;
-  const Vector3d l_dot = k.inertia_world * f.angular_acceleration_world +
-                         w.cross(k.inertia_world * w);
+  const Vector3d l_dot =
+      k.inertia_world * f.angular_acceleration_world + w.cross(k.inertia_world * w);
   return m * k.velocity_world.dot(f.linear_acceleration_world - s.gravity_world) + w.dot(l_dot);
 }
 
@@ -73,8 +73,8 @@ TEST(PlaneContactDynamics, FlatStoneAtRestCarriesItsWeight) {
 
 TEST(PlaneContactDynamics, SlidingFlatStoneDeceleratesAtMuG) {
   const auto setup = make_setup(0.3, 0.0, 0.0);
-  const auto mode = mode_of(vg::LensPart::bottom_cap, vg::ContactLaw::sliding,
-                            vg::ContactLaw::free, vg::ContactLaw::free);
+  const auto mode = mode_of(vg::LensPart::bottom_cap, vg::ContactLaw::sliding, vg::ContactLaw::free,
+                            vg::ContactLaw::free);
   const Vector2d v(0.3, -0.4);
   const auto k = vg::plane_contact_kinematics(setup, mode, Vector2d::Zero(),
                                               Eigen::Quaterniond::Identity(), v, Vector3d::Zero());
@@ -107,18 +107,18 @@ TEST(PlaneContactDynamics, RimRollingInPlaceNeedsOnlyTheWeight) {
     const Vector3d omega = omega_rate * (Vector3d::UnitZ() - std::cos(alpha) * b);
     const auto mode = mode_of(vg::LensPart::rim, vg::ContactLaw::stuck, vg::ContactLaw::free,
                               vg::ContactLaw::free);
-    const auto k = vg::plane_contact_kinematics(setup, mode, Vector2d::Zero(), q,
-                                                Vector2d::Zero(), omega);
+    const auto k =
+        vg::plane_contact_kinematics(setup, mode, Vector2d::Zero(), q, Vector2d::Zero(), omega);
     EXPECT_LT(k.velocity_world.norm(), 1e-15);
     const auto f = vg::solve_plane_contact(setup, mode, k);
     ASSERT_TRUE(f.solved);
     EXPECT_NEAR(f.normal_force_n, m * kG, 1e-12 * m * kG) << alpha_deg;
     EXPECT_LT(f.friction_force_world.norm(), 1e-12 * m * kG) << alpha_deg;
     EXPECT_LT(f.linear_acceleration_world.norm(), 1e-11) << alpha_deg;
-    const Vector3d l_dot = k.inertia_world * f.angular_acceleration_world +
-                           omega.cross(k.inertia_world * omega);
-    const Vector3d expected = i1 * omega_rate * omega_rate * std::sin(alpha) *
-                              Vector3d::UnitZ().cross(e);
+    const Vector3d l_dot =
+        k.inertia_world * f.angular_acceleration_world + omega.cross(k.inertia_world * omega);
+    const Vector3d expected =
+        i1 * omega_rate * omega_rate * std::sin(alpha) * Vector3d::UnitZ().cross(e);
     EXPECT_LT((l_dot - expected).norm(), 1e-12 * expected.norm()) << alpha_deg;
   }
 }
@@ -153,9 +153,12 @@ TEST(PlaneContactDynamics, ContactForcesDissipateExactlyAtTheSlidingLawsRate) {
     ASSERT_TRUE(f.solved);
     const double nf = f.normal_force_n;
     double expected = 0.0;
-    if (mode.tangential.law == vg::ContactLaw::sliding) expected -= 0.4 * nf * k.slip_velocity().norm();
-    if (mode.rolling.law == vg::ContactLaw::sliding) expected -= 20e-6 * nf * k.rolling_velocity().norm();
-    if (mode.spinning.law == vg::ContactLaw::sliding) expected -= 30e-6 * nf * std::abs(k.spin_velocity());
+    if (mode.tangential.law == vg::ContactLaw::sliding)
+      expected -= 0.4 * nf * k.slip_velocity().norm();
+    if (mode.rolling.law == vg::ContactLaw::sliding)
+      expected -= 20e-6 * nf * k.rolling_velocity().norm();
+    if (mode.spinning.law == vg::ContactLaw::sliding)
+      expected -= 30e-6 * nf * std::abs(k.spin_velocity());
     const double scale = m * kG * (1.0 + k.velocity_world.norm()) + nf * 0.4 * 1.0;
     worst = std::max(worst, std::abs(energy_rate(setup, k, f) - expected) / scale);
     ++checked;
@@ -182,8 +185,8 @@ TEST(PlaneContactDynamics, ConstraintsHoldAtTheAccelerationLevel) {
     mode.rolling.law = i % 2 ? vg::ContactLaw::stuck : vg::ContactLaw::free;
     mode.spinning.law = i % 4 < 2 ? vg::ContactLaw::stuck : vg::ContactLaw::free;
     const Vector3d omega(10 * n(rng), 10 * n(rng), 10 * n(rng));
-    const auto k = vg::plane_contact_kinematics(setup, mode, Vector2d::Zero(), q, Vector2d::Zero(),
-                                                omega);
+    const auto k =
+        vg::plane_contact_kinematics(setup, mode, Vector2d::Zero(), q, Vector2d::Zero(), omega);
     const auto f = vg::solve_plane_contact(setup, mode, k);
     ASSERT_TRUE(f.solved);
     const Vector3d& w = k.angular_velocity_world;
@@ -199,8 +202,8 @@ TEST(PlaneContactDynamics, ConstraintsHoldAtTheAccelerationLevel) {
       const Vector3d turn = (w + 0.5 * t * f.angular_acceleration_world) * t;
       const Eigen::Quaterniond qt =
           Eigen::Quaterniond(Eigen::AngleAxisd(turn.norm(), turn.normalized())) * q;
-      const Vector3d r = vg::plane_contact_offset_world(setup.lens, mode.part,
-                                                        qt * Vector3d::UnitZ());
+      const Vector3d r =
+          vg::plane_contact_offset_world(setup.lens, mode.part, qt * Vector3d::UnitZ());
       const Vector3d u = k.velocity_world + t * f.linear_acceleration_world + wt.cross(r);
       return Vector3d(u.x(), u.y(), 0.0);
     };

@@ -2,7 +2,8 @@
 // sustained contact. The contact point P is the lens point lowest along the world z axis; its
 // offset r = P - x_G depends only on the symmetry axis b = R(q) e_z:
 //   cap (sigma = +1 bottom, -1 top): r = sigma d b - R e_z             (P below the sphere centre)
-//   rim:                             r = -a e, e = (e_z - b_z b) / |e_z - b_z b|  (lowest rim point)
+//   rim:                             r = -a e, e = (e_z - b_z b) / |e_z - b_z b|  (lowest rim
+//   point)
 // Holding P on the plane fixes the height of G (z_G = h0 - r_z = h0 + rho(b_z)) and, since the
 // gap rate is the normal velocity of the material point at P, the vertical velocity of G
 // (v_z = -e_z . (omega x r)). Each part's formula is smooth and is used on its own side of the

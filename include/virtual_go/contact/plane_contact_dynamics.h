@@ -7,8 +7,9 @@
 // its bound against the motion) or stuck (held at zero motion by whatever force the
 // acceleration-level constraint needs, valid while that force is inside its bound):
 //   tangential (Coulomb, mu):         slip velocity u_t of the material point at P;  |F_t| <= mu N
-//   rolling resistance (length l_r):  horizontal angular velocity omega_t;           |tau_r| <= l_r N
-//   spinning friction (length l_s):   vertical angular velocity omega_z;             |tau_s| <= l_s N
+//   rolling resistance (length l_r):  horizontal angular velocity omega_t;           |tau_r| <= l_r
+//   N spinning friction (length l_s):   vertical angular velocity omega_z;             |tau_s| <=
+//   l_s N
 // N always keeps the contact (the second derivative of the gap is zero); N < 0 means lift-off.
 // The unknown multipliers (N and the stuck forces and couples) come from one small linear
 // system (at most 6 x 6) of the acceleration constraints: a Delassus-type solve.
@@ -89,9 +90,9 @@ PlaneContactKinematics plane_contact_kinematics(const PlaneContactSetup& setup,
 struct PlaneContactForces {
   bool solved = false;  // false when the constraint system is singular
   double normal_force_n = 0.0;
-  Eigen::Vector3d friction_force_world = Eigen::Vector3d::Zero();  // F_t at P, horizontal, N
-  Eigen::Vector3d rolling_couple_world = Eigen::Vector3d::Zero();  // tau_r, horizontal, N m
-  double spinning_couple_nm = 0.0;                                  // tau_s about +z, N m
+  Eigen::Vector3d friction_force_world = Eigen::Vector3d::Zero();        // F_t at P, horizontal, N
+  Eigen::Vector3d rolling_couple_world = Eigen::Vector3d::Zero();        // tau_r, horizontal, N m
+  double spinning_couple_nm = 0.0;                                       // tau_s about +z, N m
   Eigen::Vector3d linear_acceleration_world = Eigen::Vector3d::Zero();   // a_G, m/s^2
   Eigen::Vector3d angular_acceleration_world = Eigen::Vector3d::Zero();  // rad/s^2
   // d/dt of the slip velocity (horizontal), m/s^2: a_G + alpha x r + omega x dr/dt.
