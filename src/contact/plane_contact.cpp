@@ -9,6 +9,7 @@
 #include <limits>
 #include <optional>
 #include <string>
+#include <utility>
 
 #include "virtual_go/validation.h"
 
@@ -109,31 +110,22 @@ struct TimeTolerance {
 }  // namespace
 
 const char* plane_contact_event_name(PlaneContactEvent event) {
-  switch (event) {
-    case PlaneContactEvent::none:
-      return "none";
-    case PlaneContactEvent::slip_stop:
-      return "slip_stop";
-    case PlaneContactEvent::slip_start:
-      return "slip_start";
-    case PlaneContactEvent::roll_stop:
-      return "roll_stop";
-    case PlaneContactEvent::roll_start:
-      return "roll_start";
-    case PlaneContactEvent::spin_stop:
-      return "spin_stop";
-    case PlaneContactEvent::spin_start:
-      return "spin_start";
-    case PlaneContactEvent::cap_to_rim:
-      return "cap_to_rim";
-    case PlaneContactEvent::rim_to_cap:
-      return "rim_to_cap";
-    case PlaneContactEvent::lift_off:
-      return "lift_off";
-    case PlaneContactEvent::left_region:
-      return "left_region";
-    case PlaneContactEvent::rest:
-      return "rest";
+  static constexpr std::pair<PlaneContactEvent, const char*> kNames[] = {
+      {PlaneContactEvent::none, "none"},
+      {PlaneContactEvent::slip_stop, "slip_stop"},
+      {PlaneContactEvent::slip_start, "slip_start"},
+      {PlaneContactEvent::roll_stop, "roll_stop"},
+      {PlaneContactEvent::roll_start, "roll_start"},
+      {PlaneContactEvent::spin_stop, "spin_stop"},
+      {PlaneContactEvent::spin_start, "spin_start"},
+      {PlaneContactEvent::cap_to_rim, "cap_to_rim"},
+      {PlaneContactEvent::rim_to_cap, "rim_to_cap"},
+      {PlaneContactEvent::lift_off, "lift_off"},
+      {PlaneContactEvent::left_region, "left_region"},
+      {PlaneContactEvent::rest, "rest"},
+  };
+  for (const auto& [e, name] : kNames) {
+    if (e == event) return name;
   }
   return "unknown";
 }
@@ -180,8 +172,9 @@ class PlaneContact::Impl {
   PlaneContactKinematics projected(const PlaneContactKinematics& k,
                                    const PlaneContactMode& mode) const;
   EventValues event_values(const PlaneContactKinematics& k, const PlaneContactMode& mode) const;
-  double event_value(Trigger trigger, const PlaneContactKinematics& k,
-                     const PlaneContactMode& mode) const;
+  // The event function of `trigger` (positive while the mode holds); `forces` if already solved.
+  double event_value(Trigger trigger, const PlaneContactKinematics& k, const PlaneContactMode& mode,
+                     const PlaneContactForces* forces = nullptr) const;
   Choice choose_mode(const PlaneContactKinematics& k, LensPart part, std::optional<Trigger> snap,
                      std::optional<Trigger> release) const;
   Vector3 release_direction(const PlaneContactMode& mode, const PlaneContactKinematics& k,
@@ -401,7 +394,8 @@ PlaneContactKinematics PlaneContact::Impl::projected(const PlaneContactKinematic
 }
 
 double PlaneContact::Impl::event_value(Trigger trigger, const PlaneContactKinematics& k,
-                                       const PlaneContactMode& mode) const {
+                                       const PlaneContactMode& mode,
+                                       const PlaneContactForces* forces) const {
   const double cos_beta = setup_.lens.cos_cap_cone();
   const ContactMaterial& law = setup_.material;
   switch (trigger) {
@@ -426,7 +420,7 @@ double PlaneContact::Impl::event_value(Trigger trigger, const PlaneContactKinema
     default:
       break;
   }
-  const PlaneContactForces f = solve(mode, k);
+  const PlaneContactForces f = forces ? *forces : solve(mode, k);
   switch (trigger) {
     case Trigger::lift_off:
       return f.normal_force_n;
@@ -443,37 +437,23 @@ double PlaneContact::Impl::event_value(Trigger trigger, const PlaneContactKinema
 
 EventValues PlaneContact::Impl::event_values(const PlaneContactKinematics& k,
                                              const PlaneContactMode& mode) const {
+  // Which events the mode can meet: a sliding part can stop, a stuck part can start.
   EventValues e;
-  auto set = [&](Trigger t, double value) {
-    e.active[static_cast<int>(t)] = true;
-    e.g[static_cast<int>(t)] = value;
-  };
-  const double cos_beta = setup_.lens.cos_cap_cone();
-  set(Trigger::part_switch, mode.part == LensPart::rim ? cos_beta - std::abs(k.axis_world.z())
-                            : mode.part == LensPart::bottom_cap ? k.axis_world.z() - cos_beta
-                                                                : -k.axis_world.z() - cos_beta);
-  if (region_.kind != PlaneRegion::Kind::whole_plane) {
-    set(Trigger::region, event_value(Trigger::region, k, mode));
+  auto activate = [&](Trigger t) { e.active[static_cast<int>(t)] = true; };
+  activate(Trigger::part_switch);
+  activate(Trigger::lift_off);
+  if (region_.kind != PlaneRegion::Kind::whole_plane) activate(Trigger::region);
+  const std::pair<ContactLaw, std::pair<Trigger, Trigger>> parts[] = {
+      {mode.tangential.law, {Trigger::tangential_zero, Trigger::tangential_bound}},
+      {mode.rolling.law, {Trigger::rolling_zero, Trigger::rolling_bound}},
+      {mode.spinning.law, {Trigger::spinning_zero, Trigger::spinning_bound}}};
+  for (const auto& [law, triggers] : parts) {
+    if (law == ContactLaw::sliding) activate(triggers.first);
+    if (law == ContactLaw::stuck) activate(triggers.second);
   }
   const PlaneContactForces f = solve(mode, k);
-  set(Trigger::lift_off, f.normal_force_n);
-  const ContactMaterial& law = setup_.material;
-  if (mode.tangential.law == ContactLaw::sliding) {
-    set(Trigger::tangential_zero, k.slip_velocity().dot(mode.tangential.reference_world));
-  } else if (mode.tangential.law == ContactLaw::stuck) {
-    set(Trigger::tangential_bound, law.friction * f.normal_force_n - f.friction_force_world.norm());
-  }
-  if (mode.rolling.law == ContactLaw::sliding) {
-    set(Trigger::rolling_zero, k.rolling_velocity().dot(mode.rolling.reference_world));
-  } else if (mode.rolling.law == ContactLaw::stuck) {
-    set(Trigger::rolling_bound,
-        law.rolling_resistance_m * f.normal_force_n - f.rolling_couple_world.norm());
-  }
-  if (mode.spinning.law == ContactLaw::sliding) {
-    set(Trigger::spinning_zero, k.spin_velocity() * mode.spinning.reference_world.z());
-  } else if (mode.spinning.law == ContactLaw::stuck) {
-    set(Trigger::spinning_bound,
-        law.spinning_friction_m * f.normal_force_n - std::abs(f.spinning_couple_nm));
+  for (int i = 0; i < kTriggerCount; ++i) {
+    if (e.active[i]) e.g[i] = event_value(static_cast<Trigger>(i), k, mode, &f);
   }
   return e;
 }
@@ -912,31 +892,27 @@ std::optional<PlaneContactOutcome> PlaneContact::Impl::process(const PendingEven
                               static_cast<int>(m.rolling.law), static_cast<int>(m.spinning.law)};
   };
   if (summary(mode_) == summary(old_mode)) return std::nullopt;  // e.g. a rocking turn
-  // Report what the mode became (the trigger may have led elsewhere, e.g. a stop that cannot
-  // hold reverses: then nothing changed; a stop that holds is a stop).
+  // Report what the mode became: the part switch, else the trigger's own part if it changed
+  // (a stop that holds is a stop), else the first part that changed.
   if (mode_.part != old_mode.part) return outcome(t, kind, after);
-  auto changed = [&](ContactLaw before_law, ContactLaw after_law, PlaneContactEvent stop,
-                     PlaneContactEvent start) -> std::optional<PlaneContactEvent> {
+  auto changed = [](ContactLaw before_law, ContactLaw after_law, PlaneContactEvent stop,
+                    PlaneContactEvent start) -> std::optional<PlaneContactEvent> {
     if (before_law == after_law) return std::nullopt;
     return after_law == ContactLaw::stuck ? stop : start;
   };
-  for (const auto& c : {changed(old_mode.tangential.law, mode_.tangential.law,
-                                PlaneContactEvent::slip_stop, PlaneContactEvent::slip_start),
-                        changed(old_mode.rolling.law, mode_.rolling.law,
-                                PlaneContactEvent::roll_stop, PlaneContactEvent::roll_start),
-                        changed(old_mode.spinning.law, mode_.spinning.law,
-                                PlaneContactEvent::spin_stop, PlaneContactEvent::spin_start)}) {
-    if (c && (kind == PlaneContactEvent::none || *c == kind)) return outcome(t, *c, after);
+  const std::optional<PlaneContactEvent> changes[] = {
+      changed(old_mode.tangential.law, mode_.tangential.law, PlaneContactEvent::slip_stop,
+              PlaneContactEvent::slip_start),
+      changed(old_mode.rolling.law, mode_.rolling.law, PlaneContactEvent::roll_stop,
+              PlaneContactEvent::roll_start),
+      changed(old_mode.spinning.law, mode_.spinning.law, PlaneContactEvent::spin_stop,
+              PlaneContactEvent::spin_start)};
+  std::optional<PlaneContactEvent> first;
+  for (const auto& c : changes) {
+    if (c && *c == kind) return outcome(t, kind, after);
+    if (c && !first) first = c;
   }
-  for (const auto& c : {changed(old_mode.tangential.law, mode_.tangential.law,
-                                PlaneContactEvent::slip_stop, PlaneContactEvent::slip_start),
-                        changed(old_mode.rolling.law, mode_.rolling.law,
-                                PlaneContactEvent::roll_stop, PlaneContactEvent::roll_start),
-                        changed(old_mode.spinning.law, mode_.spinning.law,
-                                PlaneContactEvent::spin_stop, PlaneContactEvent::spin_start)}) {
-    if (c) return outcome(t, *c, after);
-  }
-  return outcome(t, kind, after);
+  return outcome(t, first.value_or(kind), after);
 }
 
 PlaneContactOutcome PlaneContact::Impl::advance(double t_end) {
