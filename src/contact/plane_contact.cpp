@@ -6,6 +6,7 @@
 #include <boost/numeric/odeint.hpp>
 #include <cmath>
 #include <deque>
+#include <exception>
 #include <limits>
 #include <optional>
 #include <string>
@@ -691,10 +692,24 @@ void PlaneContact::Impl::take_step() {
     dense_.initialize(y_, t_, std::min(dt_, options_.max_step_s));
     stepper_ready_ = true;
   }
-  const std::pair<double, double> step = dense_.do_step(System{this});
+  std::pair<double, double> step;
+  try {
+    step = dense_.do_step(System{this});
+  } catch (const IntegrationError&) {
+    throw;
+  } catch (const std::exception& e) {  // odeint gives up after 500 rejected step sizes
+    throw IntegrationError(std::string("plane contact: the integrator failed at t = ") +
+                           format_value(t_) + " s: " + e.what());
+  }
   ++counters_.steps;
   dt_ = dense_.current_time_step();
   const OdeState y_end = dense_.current_state();
+  for (double v : y_end) {
+    if (!std::isfinite(v)) {
+      throw IntegrationError(
+          "plane contact: the state became non-finite after t = " + format_value(t_) + " s");
+    }
+  }
   const PlaneContactKinematics k_end = decode(setup_, mode_, y_end);
 
   Segment segment;

