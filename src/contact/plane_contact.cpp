@@ -560,18 +560,20 @@ PlaneContact::Impl::Choice PlaneContact::Impl::choose_mode(const PlaneContactKin
 
   struct PartInfo {
     ContactLawPart* part;
+    const ContactLawPart& before;  // the part in the current mode
     double bound;
     Vector3 velocity;
-    double zero_speed;
+    double zero_speed, layer_speed;
     Trigger zero, bound_trigger;
   };
   PartInfo parts[3] = {
-      {&c.mode.tangential, law.friction, k.slip_velocity(), kZeroSlipSpeed,
-       Trigger::tangential_zero, Trigger::tangential_bound},
-      {&c.mode.rolling, law.rolling_resistance_m, k.rolling_velocity(), kZeroAngularSpeed,
-       Trigger::rolling_zero, Trigger::rolling_bound},
-      {&c.mode.spinning, law.spinning_friction_m, Vector3(0.0, 0.0, k.spin_velocity()),
-       kZeroAngularSpeed, Trigger::spinning_zero, Trigger::spinning_bound},
+      {&c.mode.tangential, mode_.tangential, law.friction, k.slip_velocity(), kZeroSlipSpeed,
+       kSlipDirectionLayer, Trigger::tangential_zero, Trigger::tangential_bound},
+      {&c.mode.rolling, mode_.rolling, law.rolling_resistance_m, k.rolling_velocity(),
+       kZeroAngularSpeed, kRollDirectionLayer, Trigger::rolling_zero, Trigger::rolling_bound},
+      {&c.mode.spinning, mode_.spinning, law.spinning_friction_m,
+       Vector3(0.0, 0.0, k.spin_velocity()), kZeroAngularSpeed, 0.0, Trigger::spinning_zero,
+       Trigger::spinning_bound},
   };
   for (int i = 0; i < 3; ++i) {
     PartInfo& p = parts[i];
@@ -586,7 +588,9 @@ PlaneContact::Impl::Choice PlaneContact::Impl::choose_mode(const PlaneContactKin
       p.part->law = ContactLaw::stuck;
     } else {
       p.part->law = ContactLaw::sliding;
-      p.part->reference_world = p.velocity.normalized();
+      // Inside the direction layer the velocity's direction is not trusted: keep the reference.
+      const bool keep = p.before.law == ContactLaw::sliding && p.velocity.norm() <= p.layer_speed;
+      p.part->reference_world = keep ? p.before.reference_world : p.velocity.normalized();
     }
   }
   // Rest: nothing moves and every part can hold it.
