@@ -28,4 +28,8 @@ set(VG_CORE_SOURCES
   src/contact/material.cpp
   src/contact/flight_gap_bound.cpp
   src/contact/time_of_impact.cpp
-  src/contact/impact.cpp)
+  src/contact/impact.cpp
+  src/contact/plane_region.cpp
+  src/contact/lens_on_plane.cpp
+  src/contact/plane_contact_dynamics.cpp
+  src/contact/plane_contact.cpp)

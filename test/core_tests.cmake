@@ -24,7 +24,11 @@ foreach(core_test
     contact/test_material
     contact/test_flight_gap_bound
     contact/test_time_of_impact
-    contact/test_impact)
+    contact/test_impact
+    contact/test_plane_region
+    contact/test_lens_on_plane
+    contact/test_plane_contact_dynamics
+    contact/test_plane_contact)
   get_filename_component(target ${core_test} NAME)
   catkin_add_gtest(${target} test/${core_test}.cpp)
   target_link_libraries(${target} virtual_go_core GTest::gtest_main)
