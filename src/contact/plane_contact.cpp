@@ -49,8 +49,9 @@ enum class Trigger {
   rolling_bound,
   spinning_zero,
   spinning_bound,
+  clearance,
 };
-constexpr int kTriggerCount = 9;
+constexpr int kTriggerCount = 10;
 
 struct EventValues {
   std::array<double, kTriggerCount> g{};
@@ -123,6 +124,7 @@ const char* plane_contact_event_name(PlaneContactEvent event) {
       {PlaneContactEvent::rim_to_cap, "rim_to_cap"},
       {PlaneContactEvent::lift_off, "lift_off"},
       {PlaneContactEvent::left_region, "left_region"},
+      {PlaneContactEvent::obstacle, "obstacle"},
       {PlaneContactEvent::rest, "rest"},
   };
   for (const auto& [e, name] : kNames) {
@@ -269,6 +271,15 @@ PlaneContact::Impl::Impl(const PlaneContactSetup& setup, const PlaneRegion& regi
     throw InvalidArgument("state", "contact start state: the contact point " + format_vector(contact_point) +
                           " is outside the plane's region");
   }
+  if (options.clearance_m) {
+    const double clearance = options.clearance_m(LensPose{k.position_world, k.axis_world});
+    if (!(clearance > 0.0)) {
+      throw InvalidArgument("state", "contact start state: the clearance to the other obstacles is " +
+                                         format_value(clearance) +
+                                         " m, must be positive (the stone touches more than the "
+                                         "plane)");
+    }
+  }
   // Remove u_n by a plastic normal impulse (M-orthogonal projection: energy can only fall), then
   // never let the imposed height raise the energy above the given state's.
   const double m = setup.model.mass_properties().mass();
@@ -412,6 +423,8 @@ double PlaneContact::Impl::event_value(Trigger trigger, const PlaneContactKinema
       }
     case Trigger::region:
       return region_.margin_m((k.position_world + k.offset_world).head<2>());
+    case Trigger::clearance:
+      return options_.clearance_m(LensPose{k.position_world, k.axis_world});
     case Trigger::tangential_zero:
       return k.slip_velocity().dot(mode.tangential.reference_world);
     case Trigger::rolling_zero:
@@ -444,6 +457,7 @@ EventValues PlaneContact::Impl::event_values(const PlaneContactKinematics& k,
   activate(Trigger::part_switch);
   activate(Trigger::lift_off);
   if (region_.kind != PlaneRegion::Kind::whole_plane) activate(Trigger::region);
+  if (options_.clearance_m) activate(Trigger::clearance);
   const std::pair<ContactLaw, std::pair<Trigger, Trigger>> parts[] = {
       {mode.tangential.law, {Trigger::tangential_zero, Trigger::tangential_bound}},
       {mode.rolling.law, {Trigger::rolling_zero, Trigger::rolling_bound}},
@@ -817,7 +831,7 @@ PlaneContactOutcome PlaneContact::Impl::outcome(double t, PlaneContactEvent even
   o.state = to_rigid_body_state(s);
   o.mode = s.mode;
   o.finished = event == PlaneContactEvent::rest || event == PlaneContactEvent::lift_off ||
-               event == PlaneContactEvent::left_region;
+               event == PlaneContactEvent::left_region || event == PlaneContactEvent::obstacle;
   return o;
 }
 
@@ -864,6 +878,8 @@ std::optional<PlaneContactOutcome> PlaneContact::Impl::process(const PendingEven
       return finish(PlaneContactEvent::lift_off, before);
     case Trigger::region:
       return finish(PlaneContactEvent::left_region, before);
+    case Trigger::clearance:
+      return finish(PlaneContactEvent::obstacle, before);
     case Trigger::part_switch:
       if (old_mode.part == LensPart::rim) {
         part = before.kinematics.axis_world.z() > 0.0 ? LensPart::bottom_cap : LensPart::top_cap;
