@@ -169,6 +169,11 @@ class PlaneContact::Impl {
 
   void rhs(const OdeState& y, OdeState& dydt);
   PlaneContactForces solve(const PlaneContactMode& mode, const PlaneContactKinematics& k) const;
+  // The mode with each sliding part's reference, while its motion is inside the direction layer
+  // and growing, replaced by the direction the motion is slaved to there (see slaved_direction).
+  PlaneContactMode slaved(const PlaneContactMode& mode, const PlaneContactKinematics& k) const;
+  bool slaved_direction(const PlaneContactMode& mode, const PlaneContactKinematics& k,
+                        bool tangential, Vector3& direction) const;
   double energy(const PlaneContactKinematics& k) const { return plane_contact_energy(setup_, k); }
   PlaneContactKinematics capped(const PlaneContactKinematics& k, const PlaneContactMode& mode,
                                 double cap) const;
@@ -324,10 +329,68 @@ PlaneContactForces PlaneContact::Impl::solve(const PlaneContactMode& mode,
   return f;
 }
 
+bool PlaneContact::Impl::slaved_direction(const PlaneContactMode& mode,
+                                          const PlaneContactKinematics& k, bool tangential,
+                                          Vector3& direction) const {
+  // Near zero motion the direction of a sliding part is a fast variable: with the law opposing
+  // v / |v|, theta' = residual(theta) / |v| where residual = (s x a(s))_z is the part's
+  // acceleration a across the direction s. As |v| -> 0 the direction is slaved to the stable
+  // zero of the residual (the consistent sliding direction, residual' < 0) and the equations for
+  // theta become stiff (rate ~ mu N / (m |v|)). Inside the direction layer the law therefore
+  // opposes that direction itself, found by Newton's method from the reference; the motion then
+  // grows along it and leaves the layer already aligned. A part slowing down towards a stop
+  // (no such zero with the part accelerating along it) keeps its reference.
+  const ContactLawPart& part = tangential ? mode.tangential : mode.rolling;
+  auto residual = [&](double angle, double* along) {
+    PlaneContactMode trial = mode;
+    ContactLawPart& p = tangential ? trial.tangential : trial.rolling;
+    p.reference_world = horizontal_unit(angle);
+    ++counters_.extra_solves;
+    const PlaneContactForces f = solve_plane_contact(setup_, trial, k);
+    const Vector3 acc = tangential ? f.slip_acceleration_world
+                                   : Vector3(f.angular_acceleration_world.x(),
+                                             f.angular_acceleration_world.y(), 0.0);
+    const Vector3 s = p.reference_world;
+    if (along) *along = s.dot(acc);
+    return f.solved ? s.x() * acc.y() - s.y() * acc.x()
+                    : std::numeric_limits<double>::quiet_NaN();
+  };
+  const double start = std::atan2(part.reference_world.y(), part.reference_world.x());
+  double angle = start;
+  constexpr double kDelta = 1e-7;  // rad, for the derivative
+  for (int i = 0; i < 8; ++i) {
+    const double r = residual(angle, nullptr);
+    const double slope = (residual(angle + kDelta, nullptr) - r) / kDelta;
+    if (!(slope < 0.0)) return false;  // not a stable zero nearby (or no solution)
+    const double step = -r / slope;
+    angle += step;
+    if (!(std::abs(angle - start) < 0.5)) return false;  // not near the reference
+    if (std::abs(step) <= 1e-12) break;
+  }
+  double along = 0.0;
+  if (!std::isfinite(residual(angle, &along)) || !(along > 0.0)) return false;
+  direction = horizontal_unit(angle);
+  return true;
+}
+
+PlaneContactMode PlaneContact::Impl::slaved(const PlaneContactMode& mode,
+                                            const PlaneContactKinematics& k) const {
+  PlaneContactMode out = mode;
+  if (mode.tangential.law == ContactLaw::sliding &&
+      k.slip_velocity().norm() <= kSlipDirectionLayer) {
+    slaved_direction(mode, k, true, out.tangential.reference_world);
+  }
+  if (mode.rolling.law == ContactLaw::sliding &&
+      k.rolling_velocity().norm() <= kRollDirectionLayer) {
+    slaved_direction(out, k, false, out.rolling.reference_world);
+  }
+  return out;
+}
+
 void PlaneContact::Impl::rhs(const OdeState& y, OdeState& dydt) {
   ++counters_.rhs_evaluations;
   const PlaneContactKinematics k = decode(setup_, mode_, y);
-  const PlaneContactForces f = solve(mode_, k);
+  const PlaneContactForces f = solve(slaved(mode_, k), k);
   const Vector3& v = k.velocity_world;
   const Vector3& w = k.angular_velocity_world;
   dydt[kX] = v.x();
@@ -434,7 +497,7 @@ double PlaneContact::Impl::event_value(Trigger trigger, const PlaneContactKinema
     default:
       break;
   }
-  const PlaneContactForces f = forces ? *forces : solve(mode, k);
+  const PlaneContactForces f = forces ? *forces : solve(slaved(mode, k), k);
   switch (trigger) {
     case Trigger::lift_off:
       return f.normal_force_n;
@@ -466,7 +529,7 @@ EventValues PlaneContact::Impl::event_values(const PlaneContactKinematics& k,
     if (law == ContactLaw::sliding) activate(triggers.first);
     if (law == ContactLaw::stuck) activate(triggers.second);
   }
-  const PlaneContactForces f = solve(mode, k);
+  const PlaneContactForces f = solve(slaved(mode, k), k);
   for (int i = 0; i < kTriggerCount; ++i) {
     if (e.active[i]) e.g[i] = event_value(static_cast<Trigger>(i), k, mode, &f);
   }
@@ -682,6 +745,8 @@ void PlaneContact::Impl::start_mode(const Choice& choice, double t, double energ
 
 void PlaneContact::Impl::refresh_references() {
   const PlaneContactKinematics k = decode(setup_, mode_, y_);
+  // A motion growing inside the direction layer: its reference follows the slaved direction.
+  mode_ = slaved(mode_, k);
   auto refresh = [](ContactLawPart& part, const Vector3& velocity, double zero_speed) {
     if (part.law == ContactLaw::sliding && velocity.norm() > zero_speed) {
       part.reference_world = velocity.normalized();
@@ -848,7 +913,7 @@ void PlaneContact::Impl::require_sample_time(double t) const {
 PlaneContactForces PlaneContact::Impl::forces_at(double t) const {
   require_sample_time(t);
   const Sample s = sample(t);
-  return solve_plane_contact(setup_, s.mode, s.kinematics);
+  return solve_plane_contact(setup_, slaved(s.mode, s.kinematics), s.kinematics);
 }
 
 std::optional<PlaneContactOutcome> PlaneContact::Impl::process(const PendingEvent& event) {
