@@ -169,11 +169,14 @@ class PlaneContact::Impl {
 
   void rhs(const OdeState& y, OdeState& dydt);
   PlaneContactForces solve(const PlaneContactMode& mode, const PlaneContactKinematics& k) const;
-  // The mode with each sliding part's reference, while its motion is inside the direction layer
-  // and growing, replaced by the direction the motion is slaved to there (see slaved_direction).
+  // The mode with the reference of each part marked `slaved` replaced by the direction its
+  // motion is slaved to at k (see slaved_direction).
   PlaneContactMode slaved(const PlaneContactMode& mode, const PlaneContactKinematics& k) const;
+  // Newton's method for the zero of the direction residual near the part's reference. `decide`:
+  // also require what makes a part slaved at a step's start (a stable zero); within a step only
+  // convergence is required, so the law stays smooth.
   bool slaved_direction(const PlaneContactMode& mode, const PlaneContactKinematics& k,
-                        bool tangential, Vector3& direction) const;
+                        bool tangential, bool decide, Vector3& direction) const;
   double energy(const PlaneContactKinematics& k) const { return plane_contact_energy(setup_, k); }
   PlaneContactKinematics capped(const PlaneContactKinematics& k, const PlaneContactMode& mode,
                                 double cap) const;
@@ -331,15 +334,16 @@ PlaneContactForces PlaneContact::Impl::solve(const PlaneContactMode& mode,
 
 bool PlaneContact::Impl::slaved_direction(const PlaneContactMode& mode,
                                           const PlaneContactKinematics& k, bool tangential,
-                                          Vector3& direction) const {
+                                          bool decide, Vector3& direction) const {
   // Near zero motion the direction of a sliding part is a fast variable: with the law opposing
   // v / |v|, theta' = residual(theta) / |v| where residual = (s x a(s))_z is the part's
   // acceleration a across the direction s. As |v| -> 0 the direction is slaved to the stable
   // zero of the residual (the consistent sliding direction, residual' < 0) and the equations for
   // theta become stiff (rate ~ mu N / (m |v|)). Inside the direction layer the law therefore
-  // opposes that direction itself, found by Newton's method from the reference; the motion then
-  // grows along it and leaves the layer already aligned. A part slowing down towards a stop
-  // (no such zero with the part accelerating along it) keeps its reference.
+  // opposes that direction itself, found by Newton's method from the reference: a motion growing
+  // there leaves the layer already aligned with it, one shrinking there stops along it (the
+  // stop event, v . reference = 0, is located as before). Without a stable zero near the
+  // reference (Newton diverging or a repelling zero) the part keeps its fixed reference.
   const ContactLawPart& part = tangential ? mode.tangential : mode.rolling;
   auto residual = [&](double angle, double* along) {
     PlaneContactMode trial = mode;
@@ -358,17 +362,17 @@ bool PlaneContact::Impl::slaved_direction(const PlaneContactMode& mode,
   const double start = std::atan2(part.reference_world.y(), part.reference_world.x());
   double angle = start;
   constexpr double kDelta = 1e-7;  // rad, for the derivative
-  for (int i = 0; i < 8; ++i) {
+  bool converged = false;
+  for (int i = 0; i < 8 && !converged; ++i) {
     const double r = residual(angle, nullptr);
     const double slope = (residual(angle + kDelta, nullptr) - r) / kDelta;
-    if (!(slope < 0.0)) return false;  // not a stable zero nearby (or no solution)
+    if (decide ? !(slope < 0.0) : !(slope != 0.0)) return false;
     const double step = -r / slope;
     angle += step;
     if (!(std::abs(angle - start) < 0.5)) return false;  // not near the reference
-    if (std::abs(step) <= 1e-12) break;
+    converged = std::abs(step) <= 1e-12;
   }
-  double along = 0.0;
-  if (!std::isfinite(residual(angle, &along)) || !(along > 0.0)) return false;
+  if (!converged) return false;
   direction = horizontal_unit(angle);
   return true;
 }
@@ -376,13 +380,11 @@ bool PlaneContact::Impl::slaved_direction(const PlaneContactMode& mode,
 PlaneContactMode PlaneContact::Impl::slaved(const PlaneContactMode& mode,
                                             const PlaneContactKinematics& k) const {
   PlaneContactMode out = mode;
-  if (mode.tangential.law == ContactLaw::sliding &&
-      k.slip_velocity().norm() <= kSlipDirectionLayer) {
-    slaved_direction(mode, k, true, out.tangential.reference_world);
+  if (mode.tangential.law == ContactLaw::sliding && mode.tangential.slaved) {
+    slaved_direction(mode, k, true, false, out.tangential.reference_world);
   }
-  if (mode.rolling.law == ContactLaw::sliding &&
-      k.rolling_velocity().norm() <= kRollDirectionLayer) {
-    slaved_direction(out, k, false, out.rolling.reference_world);
+  if (mode.rolling.law == ContactLaw::sliding && mode.rolling.slaved) {
+    slaved_direction(out, k, false, false, out.rolling.reference_world);
   }
   return out;
 }
@@ -745,15 +747,25 @@ void PlaneContact::Impl::start_mode(const Choice& choice, double t, double energ
 
 void PlaneContact::Impl::refresh_references() {
   const PlaneContactKinematics k = decode(setup_, mode_, y_);
-  // A motion growing inside the direction layer: its reference follows the slaved direction.
-  mode_ = slaved(mode_, k);
-  auto refresh = [](ContactLawPart& part, const Vector3& velocity, double zero_speed) {
-    if (part.law == ContactLaw::sliding && velocity.norm() > zero_speed) {
+  // Outside the direction layer the reference is the motion's direction; inside it, a part whose
+  // direction has a stable zero near the reference is slaved to it for this step (the decision
+  // is taken here, once per step, so that the law stays smooth within the step).
+  auto refresh = [&](bool tangential, const Vector3& velocity, double layer) {
+    ContactLawPart& part = tangential ? mode_.tangential : mode_.rolling;
+    part.slaved = false;
+    if (part.law != ContactLaw::sliding) return;
+    if (velocity.norm() > layer) {
       part.reference_world = velocity.normalized();
+      return;
+    }
+    Vector3 direction;
+    if (slaved_direction(mode_, k, tangential, true, direction)) {
+      part.reference_world = direction;
+      part.slaved = true;
     }
   };
-  refresh(mode_.tangential, k.slip_velocity(), kSlipDirectionLayer);
-  refresh(mode_.rolling, k.rolling_velocity(), kRollDirectionLayer);
+  refresh(true, k.slip_velocity(), kSlipDirectionLayer);
+  refresh(false, k.rolling_velocity(), kRollDirectionLayer);
   if (mode_.spinning.law == ContactLaw::sliding &&
       std::abs(k.spin_velocity()) > kZeroAngularSpeed) {
     mode_.spinning.reference_world = Vector3(0.0, 0.0, k.spin_velocity() > 0.0 ? 1.0 : -1.0);

@@ -35,13 +35,18 @@ struct ContactLawPart {
   // the event (the motion stops) is located. In a layer around zero motion (speeds below
   // kSlipDirectionLayer, kRollDirectionLayer) it opposes the reference itself: there v's
   // direction is a fast variable (the law turns the motion at a rate ~ mu N / (m |v|): stiff
-  // equations) or dominated by round-off (a part just released from stuck). While the motion
-  // grows in the layer, PlaneContact keeps the reference on the direction the motion is slaved
-  // to, the stable consistent one (the part's acceleration along it), so the motion leaves the
-  // layer aligned with its law; while it shrinks towards a stop the reference is the direction a
-  // moment before, and friction along it still dissipates until v . reference reaches 0, which
-  // is the stop event.
+  // equations) or dominated by round-off (a part just released from stuck). There PlaneContact
+  // keeps the reference on the direction the motion is slaved to, the stable consistent one (the
+  // part's acceleration along it, see `slaved`), so a growing motion leaves the layer aligned
+  // with its law and a shrinking one stops along it; without such a direction the reference is
+  // the direction a moment before, and friction along it still dissipates until
+  // v . reference reaches 0, which is the stop event.
   Eigen::Vector3d reference_world = Eigen::Vector3d::Zero();
+  // Sliding inside the direction layer with a stable consistent direction near the reference:
+  // within the current integrator step the law opposes that direction at each state (found from
+  // the reference), not the fixed reference. Set by PlaneContact at each step's start; ignored
+  // by solve_plane_contact.
+  bool slaved = false;
 };
 
 struct PlaneContactMode {
