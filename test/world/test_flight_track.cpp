@@ -13,6 +13,10 @@ namespace {
 
 using namespace worldtest;
 
+Vector3d flight_velocity(const vgtest::FlightReference& ref, double tau) {
+  return ref.v0 + ref.g * tau;
+}
+
 TEST(FlightTrack, GridSamplesAreTheClosedForm) {
   const auto mp = stone().mass_properties;
   const vg::MotionSetup setup{model(), kGravity};
@@ -30,24 +34,28 @@ TEST(FlightTrack, GridSamplesAreTheClosedForm) {
     vg::FlightTrack track;
     track.begin(s0, t0);
     vg::RigidBodyState s = s0;
-    double t_prev = t0, worst_x = 0, worst_q = 0;
+    double t_prev = t0, worst_x = 0, worst_q = 0, worst_ratio = 0;
     const std::int64_t start_ns = 123456789;
     for (int n = 1; n <= 3000; ++n) {
       const double t = static_cast<double>(start_ns + n * dt_ns) * 1e-9;
       ASSERT_TRUE(track.sample(*exact, s, t_prev, t));
       t_prev = t;
       const double tau = t - t0;
-      worst_x = std::max(worst_x, (s.position_world - ref.position_at(tau)).norm());
+      const double error = (s.position_world - ref.position_at(tau)).norm();
+      worst_x = std::max(worst_x, error);
+      // The cached step may run up to 1e-14 s off the grid time before it is re-anchored, and
+      // both sides round to ulps of |x| (a stone falling for 50 s is 12 km down, at 490 m/s).
+      const double speed = (flight_velocity(ref, tau)).norm();
+      worst_ratio = std::max(worst_ratio, error / (1e-13 + 1e-14 * speed +
+                                                   1e-14 * ref.position_at(tau).norm()));
       worst_q = std::max(worst_q, vgtest::angle_between(vgtest::from_eigen(s.orientation),
                                                         ref.orientation_at(tau)));
     }
-    // The cached step may run up to 1e-14 s off the grid time before it is re-anchored: at
-    // 30 m/s that is 3e-13 m.
-    EXPECT_LE(worst_x, 1e-12) << dt_ns;
+    EXPECT_LE(worst_ratio, 1.0) << dt_ns;
     EXPECT_LE(worst_q, 1e-11) << dt_ns;
-    std::printf("[ track   ] dt %lld ns, 3000 samples: position %.1e m, orientation "
-                "%.1e rad\n",
-                static_cast<long long>(dt_ns), worst_x, worst_q);
+    std::printf("[ track   ] dt %lld ns, 3000 samples: position %.1e m (%.2f of its bound), "
+                "orientation %.1e rad\n",
+                static_cast<long long>(dt_ns), worst_x, worst_ratio, worst_q);
   }
   // Sampling the same time again does nothing.
   vg::FlightTrack track;

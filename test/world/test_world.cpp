@@ -62,7 +62,7 @@ TEST(WorldDrop, FlatDropsFollowTheClosedForm) {
     const DropClosedForm f = drop_closed_form(c.restitution, kDropHeight);
     ASSERT_EQ(static_cast<int>(f.rebound_heights.size()), c.bounces_above_zeno);
     vg::World world(config(c.restitution), at(Vector3d(0.05, -0.03, kC + kDropHeight)), 0.0);
-    const Run r = run(world, f.rest_time + 0.2, 1e-3);
+    const WorldRun r = run(world, f.rest_time + 0.2, 1e-3);
 
     const auto impacts = of_kind(r.events, WorldEventKind::impact);
     ASSERT_EQ(impacts.size(), f.impact_times.size());
@@ -131,31 +131,110 @@ TEST(WorldDrop, ImpactEnergyLossIsTheRestitutionLaw) {
   EXPECT_NEAR(impacts.back().energy_change_j, -mass() * u * u / 2, 1e-12 * mass() * u * u);
 }
 
-// A stone tilted about a horizontal axis, spinning about its own axis, and moving sideways.
-vg::RigidBodyState tilted_toss(double tilt, double spin, double speed, double height) {
+// A stone tilted about a horizontal axis, spinning about its own axis (plus `wobble` times a
+// transverse rate), and moving sideways.
+vg::RigidBodyState tilted_toss(double tilt, double spin, double speed, double height,
+                               double wobble = 1.0) {
   const Quaterniond q(Eigen::AngleAxisd(tilt, Vector3d(0.2, 1, 0).normalized()));
   vg::RigidBodyState s = at(Vector3d(0, 0, height), q, Vector3d(speed, 0.05, 0));
-  return with_omega(s, q * Vector3d(0, 0, spin) + Vector3d(1, -2, 0));
+  return with_omega(s, q * Vector3d(0, 0, spin) + wobble * Vector3d(1, -2, 0));
+}
+
+TEST(WorldToss, ATiltedSpinningTossLandsSlidesRocksAndComesToExactRest) {
+  const vg::RigidBodyState start = tilted_toss(0.3, 10.0, 0.2, 0.03);
+  vg::World world(config(0.5, 0.3, 5e-6, 15e-6), start, 0.0);
+  WorldRun r;
+  for (double t = 1.0; t <= 60.0 && !world.is_resting(0); t += 1.0) {
+    const WorldRun part = run(world, t, 1e-3);
+    r.events.insert(r.events.end(), part.events.begin(), part.events.end());
+    r.worst_gap = std::min(r.worst_gap, part.worst_gap);
+    r.worst_energy_rise = std::max(r.worst_energy_rise, part.worst_energy_rise);
+  }
+  ASSERT_TRUE(world.is_resting(0));
+  EXPECT_GE(of_kind(r.events, WorldEventKind::impact).size(), 2u);
+  EXPECT_GE(of_kind(r.events, WorldEventKind::slide).size(), 1u);
+  EXPECT_GE(of_kind(r.events, WorldEventKind::roll).size(), 1u);
+  const vg::WorldEvent* rest = last_of(r.events, WorldEventKind::rest);
+  ASSERT_NE(rest, nullptr);
+  EXPECT_EQ(rest->detail, vg::WorldEventDetail::rest);  // the exact plane model's rest
+  // Exact rest: velocities exactly zero, on the board, tilted no more than the rolling
+  // resistance can hold: m g d sin(theta) <= l_r N with N = m g.
+  const vg::RigidBodyState& s = world.state(0);
+  EXPECT_EQ(s.velocity_world, Vector3d::Zero());
+  EXPECT_EQ(s.angular_momentum_world, Vector3d::Zero());
+  EXPECT_NEAR(plane_gap(s, 0.0), 0.0, 1e-15);
+  const double tilt = std::acos(std::min(1.0, std::abs((s.orientation * Vector3d::UnitZ()).z())));
+  EXPECT_LE(std::sin(tilt), 5e-6 / kD * (1 + 1e-9));
+  // Frozen from there on.
+  std::vector<vg::WorldEvent> later;
+  const vg::RigidBodyState frozen = s;
+  world.advance_to(world.time() + 5.0, later);
+  EXPECT_TRUE(later.empty());
+  EXPECT_TRUE(world.state(0) == frozen);
+  EXPECT_GE(r.worst_gap, -1e-12);
+  EXPECT_LE(r.worst_energy_rise, 1e-12 * (mass() * kG * kA + std::abs(energy(start))));
+  const vg::WorldCounters& c = world.counters();
+  std::printf("[ toss    ] rest at %.3f s after %zu events, tilt %.2e rad (l_r/d %.2e), worst gap "
+              "%.1e m, worst energy rise %.1e J; %ld flight steps, %ld searches, %ld impacts, %ld "
+              "contact steps\n",
+              rest->time_s, r.events.size(), tilt, 5e-6 / kD, r.worst_gap, r.worst_energy_rise,
+              c.flight_steps, c.contact_searches, c.impacts, c.plane_contact_steps);
+}
+
+TEST(WorldToss, TwoIdenticalRunsAreBitwiseIdentical) {
+  auto once = [] {
+    vg::World world(config(0.5, 0.3), tilted_toss(0.3, 10.0, 0.2, 0.03), 0.0);
+    const WorldRun r = run(world, 2.0, 1e-3);
+    return std::make_pair(r.events, world.state(0));
+  };
+  const auto a = once(), b = once();
+  ASSERT_EQ(a.first.size(), b.first.size());
+  for (std::size_t i = 0; i < a.first.size(); ++i) {
+    EXPECT_EQ(a.first[i].time_s, b.first[i].time_s);
+    EXPECT_EQ(a.first[i].kind, b.first[i].kind);
+    EXPECT_EQ(a.first[i].detail, b.first[i].detail);
+    EXPECT_TRUE(a.first[i].state == b.first[i].state);
+  }
+  EXPECT_TRUE(a.second == b.second);
+}
+
+TEST(WorldToss, AGridAndOneCallGiveTheSameEvents) {
+  const vg::RigidBodyState start = tilted_toss(0.3, 10.0, 0.2, 0.03);
+  vg::World gridded(config(0.5, 0.3), start, 0.0);
+  const WorldRun r = run(gridded, 2.0, 1e-3);
+  vg::World once(config(0.5, 0.3), start, 0.0);
+  std::vector<vg::WorldEvent> events;
+  once.advance_to(2.0, events);
+  ASSERT_EQ(events.size(), r.events.size());
+  double worst = 0;
+  for (std::size_t i = 0; i < events.size(); ++i) {
+    EXPECT_EQ(events[i].detail, r.events[i].detail);
+    worst = std::max(worst, std::abs(events[i].time_s - r.events[i].time_s));
+  }
+  EXPECT_LE(worst, 1e-12);
+  EXPECT_LE((once.state(0).position_world - gridded.state(0).position_world).norm(), 1e-12);
+  std::printf("[ grid    ] %zu events over 2 s: 1 ms grid vs one call within %.1e s\n",
+              events.size(), worst);
 }
 
 TEST(WorldToss, JellettsIntegralThroughFlightCapImpactsAndSliding) {
   // Without rolling resistance and spinning friction, J = L . (x_G - P) = L . (R e_z - d b) is
   // conserved through flight (L constant, b precessing about L), cap impacts on the horizontal
   // plane and sliding or rolling on it (docs/physics.md, "Sustained contact").
-  vg::World world(config(0.5, 0.3, 0.0, 0.0), tilted_toss(0.25, 12.0, 0.2, 0.03), 0.0);
+  vg::World world(config(0.5, 0.3, 0.0, 0.0), tilted_toss(0.2, 12.0, 0.2, 0.02, 0.0), 0.0);
   const double j0 = jellett(world.state(0));
-  const Run r = run(world, 1.0, 1e-3);
+  const WorldRun r = run(world, 1.0, 1e-3);
   double worst = 0;
   bool slid = false;
   for (const auto& e : r.events) {
+    // Every contact on the bottom cap (in flight the tilt does not matter: L is constant and b
+    // precesses about it).
     ASSERT_NE(e.kind, WorldEventKind::rim) << "the case must stay on the bottom cap";
+    if (e.has_feature) EXPECT_EQ(e.part, vg::LensPart::bottom_cap);
     worst = std::max(worst, std::abs(jellett(e.state) - j0));
     slid = slid || e.kind == WorldEventKind::slide;
   }
-  for (const auto& s : r.states) {
-    ASSERT_GT((s.orientation * Vector3d::UnitZ()).z(), kD / kR) << "must stay on the bottom cap";
-    worst = std::max(worst, std::abs(jellett(s) - j0));
-  }
+  for (const auto& s : r.states) worst = std::max(worst, std::abs(jellett(s) - j0));
   EXPECT_TRUE(slid);
   EXPECT_GE(of_kind(r.events, WorldEventKind::impact).size(), 2u);
   EXPECT_LE(worst, 1e-9 * std::abs(j0));
@@ -267,19 +346,20 @@ TEST(WorldRest, ACommandWakesARestingStone) {
   ASSERT_EQ(events.size(), 1u);
   EXPECT_EQ(events[0].kind, WorldEventKind::wake);
   EXPECT_EQ(events[0].time_s, 0.6);
-  EXPECT_TRUE(events[0].state == lifted);
+  EXPECT_TRUE(events[0].state == lifted.validated());
   EXPECT_EQ(world.mode(0), vg::StoneMode::flight);
-  world.advance_to(0.8, events);
+  world.advance_to(0.7, events);
   const auto impacts = of_kind(events, WorldEventKind::impact);
   ASSERT_GE(impacts.size(), 1u);
   EXPECT_NEAR(impacts[0].time_s, 0.6 + std::sqrt(2 * 0.02 / kG), 1e-12);
-  // A command on a stone that is not resting wakes nothing.
+  // A command on a stone that is not resting (still bouncing) wakes nothing.
+  ASSERT_EQ(world.mode(0), vg::StoneMode::flight);
   events.clear();
   vg::RigidBodyState higher = world.state(0);
   higher.position_world.z() = 0.1;
   higher.velocity_world.setZero();
-  world.set_state(0, higher, 0.8, events);
-  EXPECT_TRUE(events.empty() || events[0].kind != WorldEventKind::wake);
+  world.set_state(0, higher, 0.7, events);
+  EXPECT_TRUE(events.empty());
 }
 
 TEST(WorldRest, BadCommandsAreRefusedByNameAndChangeNothing) {

@@ -26,7 +26,7 @@ double energy_tolerance(const vg::RigidBodyState& s) {
   return 1e-12 * (mass() * kG * kA + std::abs(energy(s)));
 }
 
-void expect_sound(const Run& r, const vg::RigidBodyState& start, const std::string& what) {
+void expect_sound(const WorldRun& r, const vg::RigidBodyState& start, const std::string& what) {
   EXPECT_GE(r.worst_gap, -1e-12) << what;
   EXPECT_LE(r.worst_energy_rise, energy_tolerance(start)) << what;
   EXPECT_LE(r.worst_quaternion_norm_error, 1e-12) << what;
@@ -49,10 +49,10 @@ void expect_resting_on_table(const vg::World& world, const std::string& what) {
 }
 
 // Advances until every stone rests (or t_max), sampling on a 1 ms grid.
-Run run_to_rest(vg::World& world, double t_max) {
-  Run all;
+WorldRun run_to_rest(vg::World& world, double t_max) {
+  WorldRun all;
   for (double t = 0.5; t <= t_max; t += 0.5) {
-    Run part = run(world, t, 1e-3);
+    WorldRun part = run(world, t, 1e-3);
     all.events.insert(all.events.end(), part.events.begin(), part.events.end());
     all.worst_gap = std::min(all.worst_gap, part.worst_gap);
     all.worst_energy_rise = std::max(all.worst_energy_rise, part.worst_energy_rise);
@@ -67,7 +67,7 @@ TEST(WorldEdges, AFlatStoneDroppedJustBeyondTheEdgeHitsItThenRestsOnTheTable) {
   const double beyond = 0.002, h0 = 0.05;
   const vg::RigidBodyState start = at(Vector3d(kHalfX + beyond, 0.01, kC + h0));
   vg::World world(config(0.5), start, 0.0);
-  const Run r = run_to_rest(world, 60.0);
+  const WorldRun r = run_to_rest(world, 60.0);
   // First contact: the bottom cap's sphere (centre d above G) reaches the edge line when its
   // centre is R from the line: z_S = sqrt(R^2 - beyond^2).
   const double z_hit = std::sqrt(kR * kR - beyond * beyond) - kD;
@@ -90,7 +90,7 @@ TEST(WorldEdges, AFlatStoneDroppedJustInsideTheEdgeRestsOverhangingWithoutTouchi
   const double inside = 0.002, h0 = 0.05;
   const vg::RigidBodyState start = at(Vector3d(kHalfX - inside, 0.01, kC + h0));
   vg::World world(config(0.5), start, 0.0);
-  const Run r = run(world, 0.5, 1e-3);
+  const WorldRun r = run(world, 0.5, 1e-3);
   ASSERT_TRUE(world.is_resting(0));
   for (const auto& e : r.events) {
     if (e.has_feature) EXPECT_EQ(e.feature.kind, vg::BoardFeatureKind::top_face);
@@ -120,7 +120,7 @@ TEST(WorldEdges, AStoneSlidingOffTheBoardLandsOnTheTableAndRests) {
   const vg::RigidBodyState start =
       at(Vector3d(kHalfX - 0.03, 0.02, kC), Quaterniond::Identity(), Vector3d(0.5, 0, 0));
   vg::World world(config(0.5, 0.1), start, 0.0);
-  const Run r = run_to_rest(world, 60.0);
+  const WorldRun r = run_to_rest(world, 60.0);
   bool left = false, table = false;
   for (const auto& e : r.events) {
     left = left || e.detail == vg::WorldEventDetail::left_region;
@@ -139,7 +139,7 @@ TEST(WorldEdges, ASlowStoneTipsOverTheEdgeInTheFallbackAndComesToRest) {
   const vg::RigidBodyState start =
       at(Vector3d(kHalfX - 0.03, 0.0, kC), Quaterniond::Identity(), Vector3d(0.5, 0, 0));
   vg::World world(config(0.5, 0.3), start, 0.0);
-  const Run r = run_to_rest(world, 60.0);
+  const WorldRun r = run_to_rest(world, 60.0);
   EXPECT_GT(world.counters().nonsmooth_steps, 10);
   ASSERT_TRUE(world.is_resting(0));
   // Wherever it settled (on the table, perhaps against the board's side): on the table plane.
@@ -156,7 +156,7 @@ TEST(WorldEdges, AThrowLandsOnTheTableBesideTheBoard) {
   const vg::RigidBodyState start =
       at(Vector3d(kHalfX + 0.05, -0.1, z0), Quaterniond::Identity(), Vector3d(0.2, 0, 0));
   vg::World world(config(0.5), start, 0.0);
-  const Run r = run_to_rest(world, 60.0);
+  const WorldRun r = run_to_rest(world, 60.0);
   const auto impacts = of_kind(r.events, WorldEventKind::impact);
   ASSERT_FALSE(impacts.empty());
   EXPECT_EQ(impacts[0].feature.kind, vg::BoardFeatureKind::table);
@@ -172,7 +172,7 @@ TEST(WorldEdges, EventsDoNotDependOnTheSamplingGrid) {
       at(Vector3d(kHalfX - 0.03, 0.0, kC), Quaterniond::Identity(), Vector3d(0.5, 0, 0));
   const double t_end = 0.6;
   vg::World gridded(config(0.5, 0.3), start, 0.0);
-  const Run r = run(gridded, t_end, 1e-3);
+  const WorldRun r = run(gridded, t_end, 1e-3);
   vg::World once(config(0.5, 0.3), start, 0.0);
   std::vector<vg::WorldEvent> events;
   once.advance_to(t_end, events);

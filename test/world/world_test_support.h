@@ -142,7 +142,7 @@ inline double jellett(const vg::RigidBodyState& s) {
   return s.angular_momentum_world.dot(kR * Vector3d::UnitZ() - kD * b);
 }
 
-struct Run {
+struct WorldRun {
   std::vector<vg::WorldEvent> events;
   std::vector<double> times;               // grid times sampled
   std::vector<vg::RigidBodyState> states;  // state at each grid time
@@ -154,8 +154,8 @@ struct Run {
 };
 
 // Samples `world` at t0 + k dt up to t_end, checking every sampled state and every event's state.
-inline Run run(vg::World& world, double t_end, double dt, std::size_t stone = 0) {
-  Run r;
+inline WorldRun run(vg::World& world, double t_end, double dt, std::size_t stone = 0) {
+  WorldRun r;
   double lowest_energy = energy(world.state(stone));
   auto check = [&](const vg::RigidBodyState& s) {
     r.worst_gap = std::min(r.worst_gap, proven_gap(s));
