@@ -255,8 +255,8 @@ PlaneContact::Impl::Impl(const PlaneContactSetup& setup, const PlaneRegion& regi
   if (!(std::abs(gap) <= options.gap_tolerance_m)) {
     throw InvalidArgument(
         "state", "contact start state: gap to the plane z = " + format_value(setup.plane_height_m) +
-        " m is " + format_value(gap) + " m, must be within +/-" +
-        format_value(options.gap_tolerance_m) + " m (the stone must touch the plane)");
+                     " m is " + format_value(gap) + " m, must be within +/-" +
+                     format_value(options.gap_tolerance_m) + " m (the stone must touch the plane)");
   }
   const Vector3 omega =
       setup.model.angular_velocity_world(state.orientation, state.angular_momentum_world);
@@ -270,22 +270,24 @@ PlaneContact::Impl::Impl(const PlaneContactSetup& setup, const PlaneRegion& regi
   const double normal_velocity = k.velocity_world.z() + omega.cross(k.offset_world).z();
   if (!(std::abs(normal_velocity) <= options.normal_velocity_tolerance_m_s)) {
     throw InvalidArgument("state", "contact start state: normal velocity of the contact point is " +
-                          format_value(normal_velocity) + " m/s, must be within +/-" +
-                          format_value(options.normal_velocity_tolerance_m_s) +
-                          " m/s (an impact or a flight, not a sustained contact)");
+                                       format_value(normal_velocity) + " m/s, must be within +/-" +
+                                       format_value(options.normal_velocity_tolerance_m_s) +
+                                       " m/s (an impact or a flight, not a sustained contact)");
   }
   const Vector3 contact_point = k.position_world + k.offset_world;
   if (!region.contains(contact_point.head<2>())) {
-    throw InvalidArgument("state", "contact start state: the contact point " + format_vector(contact_point) +
-                          " is outside the plane's region");
+    throw InvalidArgument("state", "contact start state: the contact point " +
+                                       format_vector(contact_point) +
+                                       " is outside the plane's region");
   }
   if (options.clearance_m) {
     const double clearance = options.clearance_m(LensPose{k.position_world, k.axis_world});
     if (!(clearance > 0.0)) {
-      throw InvalidArgument("state", "contact start state: the clearance to the other obstacles is " +
-                                         format_value(clearance) +
-                                         " m, must be positive (the stone touches more than the "
-                                         "plane)");
+      throw InvalidArgument("state",
+                            "contact start state: the clearance to the other obstacles is " +
+                                format_value(clearance) +
+                                " m, must be positive (the stone touches more than the "
+                                "plane)");
     }
   }
   // Remove u_n by a plastic normal impulse (M-orthogonal projection: energy can only fall), then
@@ -356,8 +358,7 @@ bool PlaneContact::Impl::slaved_direction(const PlaneContactMode& mode,
                                              f.angular_acceleration_world.y(), 0.0);
     const Vector3 s = p.reference_world;
     if (along) *along = s.dot(acc);
-    return f.solved ? s.x() * acc.y() - s.y() * acc.x()
-                    : std::numeric_limits<double>::quiet_NaN();
+    return f.solved ? s.x() * acc.y() - s.y() * acc.x() : std::numeric_limits<double>::quiet_NaN();
   };
   const double start = std::atan2(part.reference_world.y(), part.reference_world.x());
   double angle = start;
@@ -886,8 +887,9 @@ PlaneContact::Impl::Sample PlaneContact::Impl::sample(double t) const {
     return {capped(k, it->mode, it->energy_begin), it->mode};
   }
   throw InvalidArgument("t_s", "contact state requested at t = " + format_value(t) +
-                        " s, outside the available range [" + format_value(window_start_) + ", " +
-                        format_value(reached_) + "] s");
+                                   " s, outside the available range [" +
+                                   format_value(window_start_) + ", " + format_value(reached_) +
+                                   "] s");
 }
 
 RigidBodyState PlaneContact::Impl::to_rigid_body_state(const Sample& s) const {
@@ -917,8 +919,9 @@ void PlaneContact::Impl::require_sample_time(double t) const {
   if (finished_ && finished_->event == PlaneContactEvent::rest && t >= finished_->time) return;
   if (!(t >= window_start_ && t <= reached_)) {
     throw InvalidArgument("t_s", "contact state requested at t = " + format_value(t) +
-                          " s, outside the available range [" + format_value(window_start_) + ", " +
-                          format_value(reached_) + "] s");
+                                     " s, outside the available range [" +
+                                     format_value(window_start_) + ", " + format_value(reached_) +
+                                     "] s");
   }
 }
 
@@ -1031,8 +1034,8 @@ PlaneContactOutcome PlaneContact::Impl::advance(double t_end) {
   require_finite("contact advance time", t_end);
   if (t_end < reached_) {
     throw InvalidArgument("t_end_s", "contact advance time " + format_value(t_end) +
-                          " s is before the time already reached, " + format_value(reached_) +
-                          " s");
+                                         " s is before the time already reached, " +
+                                         format_value(reached_) + " s");
   }
   if (initial_outcome_) {
     PlaneContactOutcome o = *initial_outcome_;
@@ -1048,10 +1051,10 @@ PlaneContactOutcome PlaneContact::Impl::advance(double t_end) {
       return o;
     }
     if (t_end > finished_->time) {
-      throw InvalidArgument("t_end_s", std::string("contact phase ended at t = ") +
-                            format_value(finished_->time) + " s (" +
-                            plane_contact_event_name(finished_->event) +
-                            "); it cannot be advanced to " + format_value(t_end) + " s");
+      throw InvalidArgument(
+          "t_end_s", std::string("contact phase ended at t = ") + format_value(finished_->time) +
+                         " s (" + plane_contact_event_name(finished_->event) +
+                         "); it cannot be advanced to " + format_value(t_end) + " s");
     }
     return outcome(finished_->time, finished_->event, finished_->sample);
   }

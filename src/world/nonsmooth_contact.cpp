@@ -36,13 +36,12 @@ void validate_nonsmooth_options(const NonsmoothContactOptions& o) {
   require_positive("nonsmooth/rest_speed_m_s", o.rest_speed_m_s);
   require_positive("nonsmooth/rest_time_s", o.rest_time_s);
   if (o.step_s > 0.01) {
-    throw InvalidArgument("nonsmooth/step_s", "nonsmooth/step_s must be at most 0.01 s, got " +
-                                                  format_value(o.step_s));
+    throw InvalidArgument("nonsmooth/step_s",
+                          "nonsmooth/step_s must be at most 0.01 s, got " + format_value(o.step_s));
   }
   if (o.max_sweeps < 1) {
-    throw InvalidArgument("nonsmooth/max_sweeps",
-                          "nonsmooth/max_sweeps must be at least 1, got " +
-                              std::to_string(o.max_sweeps));
+    throw InvalidArgument("nonsmooth/max_sweeps", "nonsmooth/max_sweeps must be at least 1, got " +
+                                                      std::to_string(o.max_sweeps));
   }
 }
 
@@ -164,8 +163,8 @@ std::optional<NonsmoothOutcome> NonsmoothContact::ending(const SubStep& step, do
   const Eigen::Vector3d omega =
       setup_.model.angular_velocity_world(s.orientation, s.angular_momentum_world);
   const double rim_speed = omega.norm() * board_.lens().half_width();
-  const bool calm = s.velocity_world.norm() <= options_.rest_speed_m_s &&
-                    rim_speed <= options_.rest_speed_m_s;
+  const bool calm =
+      s.velocity_world.norm() <= options_.rest_speed_m_s && rim_speed <= options_.rest_speed_m_s;
   calm_steps_ = calm ? calm_steps_ + 1 : 0;
   if (step.contacts > 0 &&
       static_cast<double>(calm_steps_) * options_.step_s >= options_.rest_time_s) {
@@ -190,10 +189,9 @@ NonsmoothOutcome NonsmoothContact::advance(double t_end_s) {
   require_finite("nonsmooth advance time", t_end_s);
   if (finished_) {
     if (t_end_s != finished_->time_s) {
-      throw InvalidArgument("t_end_s", "nonsmooth contact ended at t = " +
-                                           format_value(finished_->time_s) +
-                                           " s; it cannot be advanced to " +
-                                           format_value(t_end_s) + " s");
+      throw InvalidArgument("t_end_s",
+                            "nonsmooth contact ended at t = " + format_value(finished_->time_s) +
+                                " s; it cannot be advanced to " + format_value(t_end_s) + " s");
     }
     return *finished_;
   }

@@ -101,14 +101,14 @@ double World::energy(std::size_t stone) const {
   const RigidBodyState& s = state(stone);
   const MotionModel& model = config_.motion.model;
   const double m = model.mass_properties().mass();
-  const Eigen::Vector3d omega = model.angular_velocity_world(s.orientation, s.angular_momentum_world);
+  const Eigen::Vector3d omega =
+      model.angular_velocity_world(s.orientation, s.angular_momentum_world);
   return 0.5 * m * s.velocity_world.squaredNorm() + 0.5 * omega.dot(s.angular_momentum_world) -
          m * config_.motion.gravity_world.dot(s.position_world);
 }
 
 const ContactMaterial& World::material_of(const BoardFeature& feature) const {
-  return feature.kind == BoardFeatureKind::table ? config_.table_material
-                                                 : config_.board_material;
+  return feature.kind == BoardFeatureKind::table ? config_.table_material : config_.board_material;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -167,7 +167,7 @@ void World::advance_stone(std::size_t i, double t_s) {
   }
 }
 
-void World::search(std::size_t i, double from_s, double to_s) {
+TimeOfImpact World::search(std::size_t i, double from_s, double to_s) {
   StoneRecord& r = records_[i];
   const TimeOfImpact found =
       board_time_of_impact(board_, config_.motion, r.flight.anchor(), r.flight.anchor_time_s(),
@@ -177,6 +177,7 @@ void World::search(std::size_t i, double from_s, double to_s) {
   r.flight.record_search(found);
   hot_[i].next_contact_s = r.flight.contact_time_s();
   hot_[i].clear_until_s = r.flight.clear_until_s();
+  return found;
 }
 
 bool World::advance_flight(std::size_t i, double t_s) {
@@ -185,7 +186,14 @@ bool World::advance_flight(std::size_t i, double t_s) {
   // Extend the search only when the flight outlives what is known.
   while (!r.flight.contact() && r.flight.clear_until_s() < t_s) {
     const double from = r.flight.clear_until_s();
-    search(i, from, std::max(t_s, from + config_.options.contact_search_horizon_s));
+    const TimeOfImpact found =
+        search(i, from, std::max(t_s, from + config_.options.contact_search_horizon_s));
+    if (!found.hit && !(found.time_s > from)) {
+      // An exhausted search that could not move (a pathological grazing approach): the
+      // fallback takes the stone from there.
+      start_nonsmooth(i, found.state, from, WorldEventDetail::edge_contact, nullptr);
+      return false;
+    }
   }
   if (r.flight.contact() && r.flight.contact()->time_s <= t_s) {
     handle_contact(i);
@@ -201,7 +209,16 @@ bool World::advance_flight(std::size_t i, double t_s) {
 bool World::advance_plane(std::size_t i, double t_s) {
   StoneHot& h = hot_[i];
   StoneRecord& r = records_[i];
-  const PlaneContactOutcome o = r.plane->advance(t_s);
+  PlaneContactOutcome o;
+  try {
+    o = r.plane->advance(t_s);
+  } catch (const IntegrationError&) {
+    // No consistent contact force (Painleve) or an integrator failure: the fallback takes the
+    // contact from the last state handed out, which is exact up to there.
+    sync_plane_counters(i);
+    start_nonsmooth(i, h.state, h.state_time_s, WorldEventDetail::edge_contact, nullptr);
+    return false;
+  }
   sync_plane_counters(i);
   h.state = o.state;
   h.state_time_s = o.time_s;
@@ -324,10 +341,9 @@ void World::handle_contact(std::size_t i) {
   }
   ImpactOptions options;
   options.zeno_height_m = config_.zeno_height_m;
-  const Impact impact =
-      resolve_impact(config_.motion.model, c.state, c.contact.lens.point_world,
-                     c.contact.lens.normal_world, material_of(c.contact.feature),
-                     config_.motion.gravity_world, options);
+  const Impact impact = resolve_impact(config_.motion.model, c.state, c.contact.lens.point_world,
+                                       c.contact.lens.normal_world, material_of(c.contact.feature),
+                                       config_.motion.gravity_world, options);
   ++counters_.impacts;
   WorldEvent& e = emit(i, c.time_s, WorldEventKind::impact, WorldEventDetail::impact, impact.state);
   e.has_feature = true;
@@ -393,8 +409,8 @@ void World::start_nonsmooth(std::size_t i, const RigidBodyState& state, double t
   StoneHot& h = hot_[i];
   StoneRecord& r = records_[i];
   r.plane.reset();
-  r.nonsmooth.emplace(board_, config_.motion, config_.board_material, config_.table_material,
-                      state, t_s, config_.options.nonsmooth);
+  r.nonsmooth.emplace(board_, config_.motion, config_.board_material, config_.table_material, state,
+                      t_s, config_.options.nonsmooth);
   r.nonsmooth_seen = NonsmoothCounters{};
   r.phase = ContactPhase::nonsmooth;
   h.mode = StoneMode::contact;

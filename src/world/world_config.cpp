@@ -24,8 +24,8 @@ void validate_world_config(const WorldConfig& config) {
   const double h = config.zeno_height_m;
   if (!(h > 0.0 && h <= kMaxZenoHeightM)) {
     throw InvalidArgument("contact/zeno_height", "contact/zeno_height must be in (0, " +
-                                                     format_value(kMaxZenoHeightM) +
-                                                     "] m, got " + format_value(h));
+                                                     format_value(kMaxZenoHeightM) + "] m, got " +
+                                                     format_value(h));
   }
   const WorldOptions& o = config.options;
   require_positive("world/contact_search_horizon", o.contact_search_horizon_s);

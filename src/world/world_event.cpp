@@ -9,8 +9,8 @@ namespace {
 // Every kind once, in the order of the enum: the names the node publishes and documents.
 const std::vector<std::pair<WorldEventKind, std::string>>& kinds() {
   static const std::vector<std::pair<WorldEventKind, std::string>> table{
-      {WorldEventKind::impact, "impact"}, {WorldEventKind::slide, "slide"},
-      {WorldEventKind::roll, "roll"},     {WorldEventKind::rim, "rim"},
+      {WorldEventKind::impact, "impact"},     {WorldEventKind::slide, "slide"},
+      {WorldEventKind::roll, "roll"},         {WorldEventKind::rim, "rim"},
       {WorldEventKind::lift_off, "lift_off"}, {WorldEventKind::rest, "rest"},
       {WorldEventKind::wake, "wake"},
   };

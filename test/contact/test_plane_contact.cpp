@@ -16,10 +16,10 @@
 #include <vector>
 
 #include "plane_contact_reference.h"
-#include "virtual_go/contact/plane_contact.h"
-#include "virtual_go/go/board.h"
 #include "virtual_go/body/mass_properties.h"
 #include "virtual_go/common/validation.h"
+#include "virtual_go/contact/plane_contact.h"
+#include "virtual_go/go/board.h"
 
 namespace vg = virtual_go;
 namespace ref = plane_contact_reference;

@@ -22,12 +22,13 @@ TEST(FlightTrack, GridSamplesAreTheClosedForm) {
   const vg::MotionSetup setup{model(), kGravity};
   const auto exact = vg::make_integrator("exact", setup);
   const Quaterniond q0(Eigen::AngleAxisd(0.4, Vector3d(1, -2, 0.3).normalized()));
-  vg::RigidBodyState s0 = with_omega(at(Vector3d(0.1, 0.2, 5.0), q0, Vector3d(1, -0.5, 3)),
-                                     Vector3d(30, -12, 41));
+  vg::RigidBodyState s0 =
+      with_omega(at(Vector3d(0.1, 0.2, 5.0), q0, Vector3d(1, -0.5, 3)), Vector3d(30, -12, 41));
   const double t0 = 0.123456789;
   vgtest::FlightReference ref{kA, kC, s0.position_world, s0.velocity_world, kGravity, {}};
-  ref.top = vgtest::AxisymmetricTop{mp.principal_moments_body().x(), mp.principal_moments_body().z(),
-                                    vgtest::from_eigen(s0.orientation), s0.angular_momentum_world};
+  ref.top =
+      vgtest::AxisymmetricTop{mp.principal_moments_body().x(), mp.principal_moments_body().z(),
+                              vgtest::from_eigen(s0.orientation), s0.angular_momentum_world};
   // Grids as a caller builds them: from whole nanoseconds (1 ms and 1/60 s), and a float-stepped
   // 1 ms grid whose differences wander by ulps.
   for (const std::int64_t dt_ns : {std::int64_t{1000000}, std::int64_t{16666667}}) {
@@ -46,16 +47,17 @@ TEST(FlightTrack, GridSamplesAreTheClosedForm) {
       // The cached step may run up to 1e-14 s off the grid time before it is re-anchored, and
       // both sides round to ulps of |x| (a stone falling for 50 s is 12 km down, at 490 m/s).
       const double speed = (flight_velocity(ref, tau)).norm();
-      worst_ratio = std::max(worst_ratio, error / (1e-13 + 1e-14 * speed +
-                                                   1e-14 * ref.position_at(tau).norm()));
+      worst_ratio = std::max(worst_ratio,
+                             error / (1e-13 + 1e-14 * speed + 1e-14 * ref.position_at(tau).norm()));
       worst_q = std::max(worst_q, vgtest::angle_between(vgtest::from_eigen(s.orientation),
                                                         ref.orientation_at(tau)));
     }
     EXPECT_LE(worst_ratio, 1.0) << dt_ns;
     EXPECT_LE(worst_q, 1e-11) << dt_ns;
-    std::printf("[ track   ] dt %lld ns, 3000 samples: position %.1e m (%.2f of its bound), "
-                "orientation %.1e rad\n",
-                static_cast<long long>(dt_ns), worst_x, worst_ratio, worst_q);
+    std::printf(
+        "[ track   ] dt %lld ns, 3000 samples: position %.1e m (%.2f of its bound), "
+        "orientation %.1e rad\n",
+        static_cast<long long>(dt_ns), worst_x, worst_ratio, worst_q);
   }
   // Sampling the same time again does nothing.
   vg::FlightTrack track;

@@ -54,10 +54,11 @@ TEST(NonsmoothContact, AStoneTippingOffTheEdgeSeparatesWithoutOverlapOrEnergyGai
   EXPECT_LE(worst_rise, kEnergyRoundOffJ);
   EXPECT_GE(worst_gap, -1e-12);
   EXPECT_EQ(phase.counters().largest_energy_excess_j, 0.0);
-  std::printf("[ tip     ] separated after %.1f ms (%ld sub-steps, %ld impulses), deepest "
-              "free-step overlap %.2e m, worst gap %.1e m\n",
-              1e3 * (o.time_s - t0), phase.counters().steps, phase.counters().impulses,
-              phase.counters().deepest_overlap_m, worst_gap);
+  std::printf(
+      "[ tip     ] separated after %.1f ms (%ld sub-steps, %ld impulses), deepest "
+      "free-step overlap %.2e m, worst gap %.1e m\n",
+      1e3 * (o.time_s - t0), phase.counters().steps, phase.counters().impulses,
+      phase.counters().deepest_overlap_m, worst_gap);
 }
 
 TEST(NonsmoothContact, TheCommittedMotionDoesNotDependOnTheSampleTimes) {
@@ -110,9 +111,10 @@ TEST(NonsmoothContact, RandomEdgeContactsNeverGainEnergyNorOverlap) {
   }
   EXPECT_LE(worst_rise, kEnergyRoundOffJ);
   EXPECT_GE(worst_gap, -1e-12);
-  std::printf("[ random  ] 40 edge contacts: worst energy rise %.1e J, worst gap %.1e m; ends: "
-              "%d running, %d separated, %d plane, %d rest\n",
-              worst_rise, worst_gap, ends[0], ends[1], ends[2], ends[3]);
+  std::printf(
+      "[ random  ] 40 edge contacts: worst energy rise %.1e J, worst gap %.1e m; ends: "
+      "%d running, %d separated, %d plane, %d rest\n",
+      worst_rise, worst_gap, ends[0], ends[1], ends[2], ends[3]);
 }
 
 TEST(NonsmoothContact, OnTheTopFaceTheExactPlaneModelTakesOver) {

@@ -57,8 +57,8 @@ TEST(SupportPlane, TheTableBesideTheBoardIsAPlaneWhileClearOfTheSides) {
   EXPECT_NEAR(clearance(vg::lens_pose(s)), 0.005, 1e-15);  // the rim to the side face
   // Touching the side: no longer a plane of its own.
   const vg::RigidBodyState touching = at(Vector3d(kHalfX + kA, 0.0, -kThickness + kC));
-  EXPECT_FALSE(vg::support_plane(board, board.nearest(touching), vg::lens_pose(touching), 0.0)
-                   .has_value());
+  EXPECT_FALSE(
+      vg::support_plane(board, board.nearest(touching), vg::lens_pose(touching), 0.0).has_value());
   // The top face needs no clearance: a lens whose lowest point is on it is above the box.
   vg::SupportPlane top{{vg::BoardFeatureKind::top_face, 0}, 0.0, vg::PlaneRegion::whole_plane()};
   EXPECT_FALSE(static_cast<bool>(vg::support_plane_clearance(board, top)));

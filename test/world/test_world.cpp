@@ -7,11 +7,10 @@
 // not depend on the sampling grid.
 #include <gtest/gtest.h>
 
+#include <boost/math/quadrature/gauss_kronrod.hpp>
 #include <cmath>
 #include <cstdio>
 #include <vector>
-
-#include <boost/math/quadrature/gauss_kronrod.hpp>
 
 #include "support/flight_reference.h"
 #include "virtual_go/common/validation.h"
@@ -22,8 +21,8 @@ namespace {
 using namespace worldtest;
 using vg::WorldEventKind;
 
-constexpr double kDropHeight = 0.05;    // m, bottom of the flat stone above the board
-constexpr double kZenoHeight = 1e-6;    // m, the world's default
+constexpr double kDropHeight = 0.05;  // m, bottom of the flat stone above the board
+constexpr double kZenoHeight = 1e-6;  // m, the world's default
 
 struct DropCase {
   double restitution;
@@ -34,7 +33,7 @@ struct DropCase {
 // fall time sqrt(2 h0 / g), then flights of 2 e^n v0 / g; bounce n rises to e^(2n) h0; the
 // bouncing stops at the first impact whose rebound would rise less than h_min.
 struct DropClosedForm {
-  std::vector<double> impact_times;  // all impacts, the last one the sustained one
+  std::vector<double> impact_times;     // all impacts, the last one the sustained one
   std::vector<double> rebound_heights;  // of the bounces (impacts but the last)
   double rest_time = 0.0;
   double uncut_rest_time = 0.0;  // sqrt(2 h0 / g) (1 + e) / (1 - e): the infinite series
@@ -89,9 +88,10 @@ TEST(WorldDrop, FlatDropsFollowTheClosedForm) {
     EXPECT_EQ(rest->state.angular_momentum_world, Vector3d::Zero());
     EXPECT_NEAR(rest->state.position_world.z(), kC, 1e-15);
     EXPECT_TRUE(world.is_resting(0));
-    std::printf("[ drop    ] e* %.1f: %d bounces above 1 um, impact times within %.1e s, rest at "
-                "%.6f ms (series cut at h_min; uncut %.6f ms)\n",
-                c.restitution, above, worst_time, 1e3 * rest->time_s, 1e3 * f.uncut_rest_time);
+    std::printf(
+        "[ drop    ] e* %.1f: %d bounces above 1 um, impact times within %.1e s, rest at "
+        "%.6f ms (series cut at h_min; uncut %.6f ms)\n",
+        c.restitution, above, worst_time, 1e3 * rest->time_s, 1e3 * f.uncut_rest_time);
 
     EXPECT_GE(r.worst_gap, -1e-12);
     EXPECT_LE(r.worst_energy_rise, 1e-15);  // no contact phase: round-off only
@@ -172,12 +172,12 @@ TEST(WorldToss, ATiltedSpinningTossLandsSlidesRocksAndComesToExactRest) {
   EXPECT_GE(r.worst_gap, -1e-12);
   r.expect_no_energy_gain();
   const vg::WorldCounters& c = world.counters();
-  std::printf("[ toss    ] rest at %.3f s after %zu events, tilt %.2e rad (l_r/d %.2e), worst gap "
-              "%.1e m, energy above start %.1e J, worst rise over an earlier state %.1e J; %ld "
-              "flight steps, %ld searches, %ld impacts, %ld contact steps\n",
-              rest->time_s, r.events.size(), tilt, 5e-6 / kD, r.worst_gap,
-              r.worst_energy_above_start, r.worst_energy_rise, c.flight_steps,
-              c.contact_searches, c.impacts, c.plane_contact_steps);
+  std::printf(
+      "[ toss    ] rest at %.3f s after %zu events, tilt %.2e rad (l_r/d %.2e), worst gap "
+      "%.1e m, energy above start %.1e J, worst rise over an earlier state %.1e J; %ld "
+      "flight steps, %ld searches, %ld impacts, %ld contact steps\n",
+      rest->time_s, r.events.size(), tilt, 5e-6 / kD, r.worst_gap, r.worst_energy_above_start,
+      r.worst_energy_rise, c.flight_steps, c.contact_searches, c.impacts, c.plane_contact_steps);
 }
 
 TEST(WorldToss, TwoIdenticalRunsAreBitwiseIdentical) {
@@ -237,8 +237,9 @@ TEST(WorldToss, JellettsIntegralThroughFlightCapImpactsAndSliding) {
   EXPECT_TRUE(slid);
   EXPECT_GE(of_kind(r.events, WorldEventKind::impact).size(), 2u);
   EXPECT_LE(worst, 1e-9 * std::abs(j0));
-  std::printf("[ jellett ] J = %.6e kg m^3/s held to %.1e relative over %zu events and 1000 samples\n",
-              j0, worst / std::abs(j0), r.events.size());
+  std::printf(
+      "[ jellett ] J = %.6e kg m^3/s held to %.1e relative over %zu events and 1000 samples\n", j0,
+      worst / std::abs(j0), r.events.size());
   EXPECT_GE(r.worst_gap, -1e-12);
 }
 
@@ -252,9 +253,9 @@ TEST(WorldFlight, FlightSamplesAreTheClosedFormFromTheLastEvent) {
   vg::World world(config(0.5), s, 0.0);
   const auto mp = stone().mass_properties;
   vgtest::FlightReference flight{kA, kC, s.position_world, s.velocity_world, kGravity, {}};
-  flight.top = vgtest::AxisymmetricTop{mp.principal_moments_body().x(),
-                                       mp.principal_moments_body().z(),
-                                       vgtest::from_eigen(s.orientation), s.angular_momentum_world};
+  flight.top =
+      vgtest::AxisymmetricTop{mp.principal_moments_body().x(), mp.principal_moments_body().z(),
+                              vgtest::from_eigen(s.orientation), s.angular_momentum_world};
   double anchor_time = 0.0;
   double worst_position = 0, worst_angle = 0, worst_velocity = 0;
   long compared = 0;
@@ -277,9 +278,8 @@ TEST(WorldFlight, FlightSamplesAreTheClosedFormFromTheLastEvent) {
     worst_position = std::max(worst_position, (w.position_world - flight.position_at(tau)).norm());
     worst_velocity =
         std::max(worst_velocity, (w.velocity_world - (flight.v0 + kGravity * tau)).norm());
-    worst_angle = std::max(worst_angle,
-                           vgtest::angle_between(vgtest::from_eigen(w.orientation),
-                                                 flight.orientation_at(tau)));
+    worst_angle = std::max(worst_angle, vgtest::angle_between(vgtest::from_eigen(w.orientation),
+                                                              flight.orientation_at(tau)));
     ++compared;
   }
   EXPECT_GE(of_kind(events, WorldEventKind::impact).size(), 1u);
@@ -287,9 +287,10 @@ TEST(WorldFlight, FlightSamplesAreTheClosedFormFromTheLastEvent) {
   EXPECT_LE(worst_position, 1e-12);
   EXPECT_LE(worst_velocity, 1e-12);
   EXPECT_LE(worst_angle, 1e-12);
-  std::printf("[ flight  ] %ld flight samples vs closed form: position %.1e m, velocity %.1e m/s, "
-              "orientation %.1e rad\n",
-              compared, worst_position, worst_velocity, worst_angle);
+  std::printf(
+      "[ flight  ] %ld flight samples vs closed form: position %.1e m, velocity %.1e m/s, "
+      "orientation %.1e rad\n",
+      compared, worst_position, worst_velocity, worst_angle);
 }
 
 TEST(WorldFlight, OneContactSearchPerFlight) {
@@ -447,9 +448,9 @@ TEST(WorldLiftOff, AStoneLeavingItsRimFliesOnWithoutTouchingThePlaneItLeft) {
   for (int i = 0; i < 200; ++i) (margin(0.5 * (lo + hi)) > 0 ? lo : hi) = 0.5 * (lo + hi);
   const double alpha_lift = 0.5 * (lo + hi);
   const double t0 = 0.25;
-  const double t_lift = t0 + boost::math::quadrature::gauss_kronrod<double, 61>::integrate(
-                                 [&](double a) { return 1 / std::sqrt(rate_sq(a)); }, alpha0,
-                                 alpha_lift, 15, 1e-15);
+  const double t_lift =
+      t0 + boost::math::quadrature::gauss_kronrod<double, 61>::integrate(
+               [&](double a) { return 1 / std::sqrt(rate_sq(a)); }, alpha0, alpha_lift, 15, 1e-15);
 
   const Quaterniond q(Eigen::AngleAxisd(alpha0, Vector3d::UnitY()));
   vg::World world(config(0.5, 0.0, 0.0, 0.0), touching_top(q, Vector3d(0, rate0, 0)), t0);

@@ -27,10 +27,10 @@ void expect_sound(const WorldRun& r, const std::string& what) {
   for (const auto& e : r.events) {
     if (e.kind == WorldEventKind::impact) EXPECT_LE(e.energy_change_j, 0.0) << what;
   }
-  std::printf("[ %-10s] %zu events, worst gap %.1e m, energy above start %.1e J, worst rise over "
-              "an earlier state %.1e J\n",
-              what.c_str(), r.events.size(), r.worst_gap, r.worst_energy_above_start,
-              r.worst_energy_rise);
+  std::printf(
+      "[ %-10s] %zu events, worst gap %.1e m, energy above start %.1e J, worst rise over "
+      "an earlier state %.1e J\n",
+      what.c_str(), r.events.size(), r.worst_gap, r.worst_energy_above_start, r.worst_energy_rise);
 }
 
 // The stone rests on the table, outside the board's footprint: its lowest point on z = -T.
@@ -66,7 +66,8 @@ TEST(WorldEdges, AFlatStoneDroppedJustBeyondTheEdgeHitsItThenRestsOnTheTable) {
   EXPECT_EQ(impacts[0].feature.index, 0);
   EXPECT_NEAR(impacts[0].time_s, t_hit, 1e-12);
   bool on_table = false;
-  for (const auto& e : impacts) on_table = on_table || e.feature.kind == vg::BoardFeatureKind::table;
+  for (const auto& e : impacts)
+    on_table = on_table || e.feature.kind == vg::BoardFeatureKind::table;
   EXPECT_TRUE(on_table);
   expect_resting_on_table(world, "edge out");
   expect_sound(r, "edge out");
@@ -87,14 +88,14 @@ TEST(WorldEdges, AFlatStoneDroppedJustInsideTheEdgeRestsOverhangingWithoutTouchi
   // centre is R above the board, `inside` from the edge line.
   double closest = 1.0;
   for (const auto& s : r.states) {
-    closest = std::min(closest, vgtest::line_gap_by_scan(lens_ref(s), Vector3d(kHalfX, 0, 0),
-                                                         Vector3d::UnitY()));
+    closest = std::min(
+        closest, vgtest::line_gap_by_scan(lens_ref(s), Vector3d(kHalfX, 0, 0), Vector3d::UnitY()));
   }
   const double rest_gap = std::sqrt(inside * inside + kR * kR) - kR;
   EXPECT_GT(closest, 0.0);
-  EXPECT_NEAR(vgtest::line_gap_by_scan(lens_ref(world.state(0)), Vector3d(kHalfX, 0, 0),
-                                       Vector3d::UnitY()),
-              rest_gap, 1e-12);
+  EXPECT_NEAR(
+      vgtest::line_gap_by_scan(lens_ref(world.state(0)), Vector3d(kHalfX, 0, 0), Vector3d::UnitY()),
+      rest_gap, 1e-12);
   EXPECT_NEAR(world.state(0).position_world.x(), kHalfX - inside, 1e-15);
   EXPECT_NEAR(plane_gap(world.state(0), 0.0), 0.0, 1e-15);
   EXPECT_EQ(world.counters().nonsmooth_steps, 0);
@@ -112,8 +113,8 @@ TEST(WorldEdges, AStoneSlidingOffTheBoardLandsOnTheTableAndRests) {
   bool left = false, table = false;
   for (const auto& e : r.events) {
     left = left || e.detail == vg::WorldEventDetail::left_region;
-    table = table || (e.kind == WorldEventKind::impact &&
-                      e.feature.kind == vg::BoardFeatureKind::table);
+    table = table ||
+            (e.kind == WorldEventKind::impact && e.feature.kind == vg::BoardFeatureKind::table);
   }
   EXPECT_TRUE(left);
   EXPECT_TRUE(table);
@@ -176,9 +177,10 @@ TEST(WorldEdges, EventsDoNotDependOnTheSamplingGrid) {
   EXPECT_LE(worst_time, 1e-12);
   EXPECT_LE(worst_position, 1e-12);
   EXPECT_GT(gridded.counters().nonsmooth_steps, 10);
-  std::printf("[ grid      ] %zu events, 1 ms grid vs one call: times within %.1e s, positions "
-              "within %.1e m\n",
-              events.size(), worst_time, worst_position);
+  std::printf(
+      "[ grid      ] %zu events, 1 ms grid vs one call: times within %.1e s, positions "
+      "within %.1e m\n",
+      events.size(), worst_time, worst_position);
 }
 
 }  // namespace

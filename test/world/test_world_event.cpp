@@ -11,8 +11,8 @@
 namespace vg = virtual_go;
 
 TEST(WorldEvent, PublishedKindsAreTheIssuesReasons) {
-  const std::vector<std::string> expected{"impact", "slide", "roll", "rim",
-                                          "lift_off", "rest", "wake"};
+  const std::vector<std::string> expected{"impact",   "slide", "roll", "rim",
+                                          "lift_off", "rest",  "wake"};
   EXPECT_EQ(vg::world_event_kind_names(), expected);
   EXPECT_EQ(vg::world_event_kind_name(vg::WorldEventKind::lift_off), "lift_off");
 }

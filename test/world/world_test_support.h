@@ -103,9 +103,9 @@ inline double proven_gap(const vg::RigidBodyState& s) {
     return n.dot(lens.x) - lens.reach(n) - n.dot(box.support(n));
   };
   double best = -std::numeric_limits<double>::infinity();
-  for (const Vector3d& n : {Vector3d(Vector3d::UnitZ()), Vector3d(Vector3d::UnitX()),
-                            Vector3d(-Vector3d::UnitX()), Vector3d(Vector3d::UnitY()),
-                            Vector3d(-Vector3d::UnitY())}) {
+  for (const Vector3d& n :
+       {Vector3d(Vector3d::UnitZ()), Vector3d(Vector3d::UnitX()), Vector3d(-Vector3d::UnitX()),
+        Vector3d(Vector3d::UnitY()), Vector3d(-Vector3d::UnitY())}) {
     best = std::max(best, along(n));
   }
   if (best < 1e-3) {
@@ -144,12 +144,12 @@ inline double jellett(const vg::RigidBodyState& s) {
 
 struct WorldRun {
   std::vector<vg::WorldEvent> events;
-  std::vector<double> times;               // grid times sampled
-  std::vector<vg::RigidBodyState> states;  // state at each grid time
-  double worst_gap = std::numeric_limits<double>::infinity();  // over samples and events, m
+  std::vector<double> times;                                          // grid times sampled
+  std::vector<vg::RigidBodyState> states;                             // state at each grid time
+  double worst_gap = std::numeric_limits<double>::infinity();         // over samples and events, m
   double energy_at_start = std::numeric_limits<double>::quiet_NaN();  // J
-  double energy_scale = 0.0;  // |E| + m g a at the start, J
-  double lowest_energy = std::numeric_limits<double>::infinity();  // so far, J
+  double energy_scale = 0.0;                                          // |E| + m g a at the start, J
+  double lowest_energy = std::numeric_limits<double>::infinity();     // so far, J
   // Largest energy of a state above the energy at the start, J (must be round-off).
   double worst_energy_above_start = -std::numeric_limits<double>::infinity();
   // Largest energy of a state above the lowest energy of every earlier state (samples and

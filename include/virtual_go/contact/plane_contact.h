@@ -1,6 +1,7 @@
 // Sustained contact of one stone with a horizontal plane z = h0 (the board's top face or the
 // table): sliding, rolling and rocking, spinning, on a cap or on the rim, with Coulomb sliding
-// friction and set-valued rolling resistance and spinning friction (plane_contact_dynamics.h).
+// friction and set-valued rolling resistance and spinning friction (plane_contact_dynamics.h;
+// docs/physics.md, "Sustained contact").
 //
 // The phase starts from a state already on the plane (gap 0, normal velocity 0 after an impact,
 // or a stone placed there) and integrates the Newton-Euler equations in coordinates where the
@@ -31,9 +32,9 @@
 #include <functional>
 #include <memory>
 
+#include "virtual_go/body/rigid_body_state.h"
 #include "virtual_go/contact/plane_contact_dynamics.h"
 #include "virtual_go/contact/plane_region.h"
-#include "virtual_go/body/rigid_body_state.h"
 #include "virtual_go/geometry/lens_distance.h"
 
 namespace virtual_go {

@@ -1,5 +1,6 @@
 // Forces and accelerations of a stone in sustained contact with a horizontal plane z = h0, for a
-// given contact mode: the Newton-Euler equations with the contact point held on the plane.
+// given contact mode: the Newton-Euler equations with the contact point held on the plane
+// (docs/physics.md, "Sustained contact").
 //
 //   m a_G = m g + F,   d/dt(I_w omega) = r x F + tau,   F = N e_z + F_t,   tau = tau_r + tau_s e_z
 //
@@ -17,9 +18,9 @@
 
 #include <Eigen/Geometry>
 
+#include "virtual_go/body/motion_model.h"
 #include "virtual_go/contact/material.h"
 #include "virtual_go/geometry/lens_geometry.h"
-#include "virtual_go/body/motion_model.h"
 
 namespace virtual_go {
 

@@ -78,8 +78,8 @@ struct NonsmoothCounters {
   long impulses = 0;     // plastic impulses applied
   long projections = 0;  // position corrections
   long energy_guard_scalings = 0;
-  long separation_searches = 0;  // exact time-of-impact searches for the separated test
-  double deepest_overlap_m = 0.0;    // deepest overlap a free sub-step produced (corrected), m
+  long separation_searches = 0;          // exact time-of-impact searches for the separated test
+  double deepest_overlap_m = 0.0;        // deepest overlap a free sub-step produced (corrected), m
   double largest_energy_excess_j = 0.0;  // energy above the cap the guard could not remove
                                          // (all velocities zero already), J
 };
@@ -108,9 +108,9 @@ class NonsmoothContact {
  private:
   struct SubStep {
     RigidBodyState state;
-    bool loaded = false;                // a contact needed a correction or an impulse
-    int contacts = 0;                   // contacts within the margin at the end
-    BoardContact contact[2];            // those contacts
+    bool loaded = false;      // a contact needed a correction or an impulse
+    int contacts = 0;         // contacts within the margin at the end
+    BoardContact contact[2];  // those contacts
   };
   SubStep sub_step(const RigidBodyState& from, double h_s, double energy_cap_j, bool commit);
   double lattice(long k) const { return t0_ + static_cast<double>(k) * options_.step_s; }

@@ -21,7 +21,7 @@ enum class ContactPhase {
               // fallback, NonsmoothContact
 };
 
-std::string stone_mode_name(StoneMode mode);        // "flight", "contact", "resting"
+std::string stone_mode_name(StoneMode mode);         // "flight", "contact", "resting"
 std::string contact_phase_name(ContactPhase phase);  // "none", "plane", "nonsmooth"
 
 }  // namespace virtual_go

@@ -15,7 +15,7 @@
 namespace virtual_go {
 
 struct SupportPlane {
-  BoardFeature feature;  // top_face or table
+  BoardFeature feature;   // top_face or table
   double height_m = 0.0;  // the plane is z = height_m
   PlaneRegion region;     // where the contact point may be
 };

@@ -42,8 +42,7 @@ class World {
   // board or the table by more than the touch tolerance. Events at t0 (a stone placed resting on
   // the board comes to rest at once) are reported by the first advance_to.
   World(const WorldConfig& config, const RigidBodyState& initial_state, double t0_s);
-  World(const WorldConfig& config, const std::vector<RigidBodyState>& initial_states,
-        double t0_s);
+  World(const WorldConfig& config, const std::vector<RigidBodyState>& initial_states, double t0_s);
   ~World();
   World(World&&) noexcept;
   World& operator=(World&&) noexcept;
@@ -54,7 +53,9 @@ class World {
 
   // Advances every stone to t_s (>= time()) through all events, appending them in time order
   // (ties: by stone, then in the order they happened). Throws InvalidArgument for a non-finite t_s
-  // or one before time(), nothing changed; IntegrationError if a contact model fails.
+  // or one before time(), nothing changed. A plane contact that fails (no consistent contact
+  // force, an integrator failure) hands the stone to the fallback; IntegrationError escapes
+  // only if an impact's slip integration fails.
   void advance_to(double t_s, std::vector<WorldEvent>& events);
 
   // A command: the stone's state becomes `state` at t_s (>= time(); the world is first advanced
@@ -111,7 +112,7 @@ class World {
   bool advance_flight(std::size_t i, double t_s);
   bool advance_plane(std::size_t i, double t_s);
   bool advance_nonsmooth(std::size_t i, double t_s);
-  void search(std::size_t i, double from_s, double to_s);
+  TimeOfImpact search(std::size_t i, double from_s, double to_s);
   void begin_flight(std::size_t i, const RigidBodyState& state, double t_s, bool after_lift_off);
   void handle_contact(std::size_t i);
   void enter_sustained(std::size_t i, const RigidBodyState& state, double t_s,
