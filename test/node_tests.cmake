@@ -31,3 +31,8 @@ endforeach()
 
 # rviz under Xvfb (the test starts Xvfb and rviz itself and reads a screenshot).
 add_rostest(test/rviz_smoke.test DEPENDENCIES stone_node)
+
+# README.md, pasted: its commands run as a user types them (test/ros/readme_commands_test.py).
+add_rostest(test/ros/readme_commands.test DEPENDENCIES stone_node bag_report)
+# use_sim_time without /clock: the node says it waits (test/ros/stone_node_clock_wait_test.py).
+add_rostest(test/ros/stone_node_clock_wait.test DEPENDENCIES stone_node)
