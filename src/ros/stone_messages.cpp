@@ -163,8 +163,7 @@ visualization_msgs::Marker to_marker_msg(const Stone& stone, const std::string& 
   return msg;
 }
 
-visualization_msgs::Marker to_mesh_marker_msg(const std::string& mesh_uri,
-                                              const std::string& color,
+visualization_msgs::Marker to_mesh_marker_msg(const std::string& mesh_uri, const std::string& color,
                                               const std::string& stone_frame) {
   visualization_msgs::Marker msg = stone_marker_base(color, stone_frame);
   msg.type = visualization_msgs::Marker::MESH_RESOURCE;

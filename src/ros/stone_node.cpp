@@ -14,7 +14,7 @@
 namespace virtual_go {
 namespace {
 
-constexpr double kMarkerPeriodS = 1.0;  // wall time between republished markers
+constexpr double kMarkerPeriodS = 1.0;                 // wall time between republished markers
 constexpr std::int64_t kClockPatienceNs = 3000000000;  // ROS time still this long: say so
 constexpr double kClockWatchPeriodS = 0.5;             // wall time between looks at the clock
 
@@ -114,8 +114,8 @@ StoneNode::StoneNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_n
   // every tick, duplicating /tf) and a robot model (rviz reads robot_description once, so it
   // depends on start order too). The first one goes out right after the first transform.
   marker_ = make_marker(sim_);
-  marker_timer_ = nh_.createWallTimer(ros::WallDuration(kMarkerPeriodS),
-                                      &StoneNode::on_marker_timer, this);
+  marker_timer_ =
+      nh_.createWallTimer(ros::WallDuration(kMarkerPeriodS), &StoneNode::on_marker_timer, this);
   if (ros::Time::isSimTime()) {
     clock_watch_timer_ = nh_.createWallTimer(ros::WallDuration(kClockWatchPeriodS),
                                              &StoneNode::on_clock_watch, this);

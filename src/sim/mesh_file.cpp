@@ -3,7 +3,6 @@
 #include <unistd.h>
 
 #include <Eigen/Geometry>
-
 #include <cerrno>
 #include <cstdio>
 #include <cstring>

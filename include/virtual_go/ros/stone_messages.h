@@ -48,8 +48,7 @@ visualization_msgs::Marker to_marker_msg(const Stone& stone, const std::string& 
                                          const std::string& stone_frame);
 // The same lens as a MESH_RESOURCE marker naming a mesh file (file:// URI), a few hundred
 // bytes, so it can be republished.
-visualization_msgs::Marker to_mesh_marker_msg(const std::string& mesh_uri,
-                                              const std::string& color,
+visualization_msgs::Marker to_mesh_marker_msg(const std::string& mesh_uri, const std::string& color,
                                               const std::string& stone_frame);
 
 }  // namespace virtual_go
