@@ -105,12 +105,14 @@ StoneNode::StoneNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_n
   info_pub_ = private_nh_.advertise<StoneInfo>("info", 1, true);
   events_pub_ = private_nh_.advertise<StoneEvent>("events", 10, true);
   // rviz drops a marker for good when it gets it before the first transform of the marker's
-  // frame: tf2's message filter fails a stamp-0 request as soon as that frame appears (rviz
-  // issue #494). Which arrives first depends on start order and on the two connections, so
-  // no single message may matter: the marker is republished every kMarkerPeriodS, and a
-  // dropped one is replaced by the next. A TRIANGLE_LIST of the lens is 138 KB per message, so
-  // the marker is a MESH_RESOURCE naming a binary STL of the lens written here (about 200
-  // bytes: 0.2 KB/s). Rejected: a marker in the fixed frame (it must then carry the pose at
+  // frame: tf2's message filter holds it, and once the frame appears tf2 fails every pending
+  // request stamped more than its cache time (10 s) before the frame's latest data, which a
+  // stamp of 0 always is (BufferCore::testTransformableRequests; ros-visualization/rviz#494).
+  // Which arrives first depends on start order and on two separate connections, so no single
+  // message may matter: the marker is republished every kMarkerPeriodS, and a dropped one is
+  // replaced by the next. A TRIANGLE_LIST of the lens is 138 KB per message, so the marker is
+  // a MESH_RESOURCE naming a binary STL of the lens written here (233 bytes with the default
+  // ROS_HOME: 0.23 KB/s). Rejected: a marker in the fixed frame (it must carry the pose at
   // every tick, duplicating /tf) and a robot model (rviz reads robot_description once, so it
   // depends on start order too). The first one goes out right after the first transform.
   marker_ = make_marker(sim_);

@@ -1,8 +1,8 @@
 // The stone's display mesh as a binary STL file, for rviz's MESH_RESOURCE marker. ROS-free.
 //
 // Why a file: rviz drops a marker for good when it arrives before the first transform of its
-// frame (tf2's message filter fails a stamp-0 request once that frame appears; rviz issue #494),
-// so the node republishes its marker once a second. A TRIANGLE_LIST of the lens is 138 KB per
+// frame (tf2 fails a stamp-0 request once that frame appears; ros-visualization/rviz#494), so
+// the node republishes its marker once a second. A TRIANGLE_LIST of the lens is 138 KB per
 // message; a MESH_RESOURCE marker that names this file is a few hundred bytes.
 #pragma once
 
