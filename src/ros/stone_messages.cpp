@@ -120,17 +120,18 @@ StoneEvent to_event_msg(const SegmentEvent& event, const MotionModel& model,
   return msg;
 }
 
-visualization_msgs::Marker to_marker_msg(const Stone& stone, const std::string& color,
-                                         const std::string& stone_frame) {
-  // Fine enough that the silhouette looks round at the default camera distance.
-  const TriangleMesh mesh = tessellate_lens(stone.shape, 64, 8);
+namespace {
+
+// The marker fields both forms share: frame-locked to the stone frame, stamp zero (rviz then
+// draws it at the latest transform of that frame), the stone's colour.
+visualization_msgs::Marker stone_marker_base(const std::string& color,
+                                             const std::string& stone_frame) {
   visualization_msgs::Marker msg;
   msg.header.frame_id = stone_frame;
   msg.header.stamp = ros::Time();  // zero: rviz uses the latest transform of the stone frame
   msg.frame_locked = true;
   msg.ns = "stone";
   msg.id = 0;
-  msg.type = visualization_msgs::Marker::TRIANGLE_LIST;
   msg.action = visualization_msgs::Marker::ADD;
   msg.pose.orientation.w = 1.0;
   msg.scale.x = msg.scale.y = msg.scale.z = 1.0;
@@ -140,10 +141,33 @@ visualization_msgs::Marker to_marker_msg(const Stone& stone, const std::string& 
   msg.color.g = black ? 0.06f : 0.93f;
   msg.color.b = black ? 0.07f : 0.90f;
   msg.color.a = 1.0f;
+  return msg;
+}
+
+}  // namespace
+
+TriangleMesh stone_display_mesh(const Stone& stone) {
+  // Fine enough that the silhouette looks round at the default camera distance.
+  return tessellate_lens(stone.shape, 64, 8);
+}
+
+visualization_msgs::Marker to_marker_msg(const Stone& stone, const std::string& color,
+                                         const std::string& stone_frame) {
+  const TriangleMesh mesh = stone_display_mesh(stone);
+  visualization_msgs::Marker msg = stone_marker_base(color, stone_frame);
+  msg.type = visualization_msgs::Marker::TRIANGLE_LIST;
   msg.points.reserve(mesh.triangles.size() * 3);
   for (const auto& triangle : mesh.triangles) {
     for (const int index : triangle) msg.points.push_back(tf2::toMsg(mesh.vertices[index]));
   }
+  return msg;
+}
+
+visualization_msgs::Marker to_mesh_marker_msg(const std::string& mesh_uri, const std::string& color,
+                                              const std::string& stone_frame) {
+  visualization_msgs::Marker msg = stone_marker_base(color, stone_frame);
+  msg.type = visualization_msgs::Marker::MESH_RESOURCE;
+  msg.mesh_resource = mesh_uri;
   return msg;
 }
 

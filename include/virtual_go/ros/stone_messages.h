@@ -14,6 +14,7 @@
 #include "virtual_go/StoneEvent.h"
 #include "virtual_go/StoneInfo.h"
 #include "virtual_go/body/rigid_body.h"
+#include "virtual_go/geometry/tessellation.h"
 #include "virtual_go/sim/segment_event.h"
 #include "virtual_go/sim/stone_simulation.h"
 
@@ -39,9 +40,15 @@ nav_msgs::Odometry to_odometry_msg(const RigidBody& body, const ros::Time& stamp
 StoneInfo to_info_msg(const StoneSimulation& sim);
 StoneEvent to_event_msg(const SegmentEvent& event, const MotionModel& model,
                         const std::string& world_frame);
+// The lens as rviz draws it (body frame), for both marker forms below.
+TriangleMesh stone_display_mesh(const Stone& stone);
 // The tessellated lens as a TRIANGLE_LIST in the stone frame, locked to it so rviz moves it
-// with tf.
+// with tf. 138 KB: the fallback when the mesh file cannot be written.
 visualization_msgs::Marker to_marker_msg(const Stone& stone, const std::string& color,
                                          const std::string& stone_frame);
+// The same lens as a MESH_RESOURCE marker naming a mesh file (file:// URI), a few hundred
+// bytes, so it can be republished.
+visualization_msgs::Marker to_mesh_marker_msg(const std::string& mesh_uri, const std::string& color,
+                                              const std::string& stone_frame);
 
 }  // namespace virtual_go
