@@ -1,12 +1,13 @@
 # Tests of the stone node. Included by CMakeLists.txt inside if(CATKIN_ENABLE_TESTING).
 
-# The ROS-free adapter (clock, parameters, requests, simulation, mesh file, clock watch): gtest,
-# no master.
+# The ROS-free adapter (clock, parameters, requests, outputs, simulation, mesh file, clock
+# watch): gtest, no master.
 catkin_add_gtest(node_adapter_test
   test/sim/test_sim_clock.cpp
   test/sim/test_stone_config.cpp
   test/sim/test_stone_parameters.cpp
   test/sim/test_state_request.cpp
+  test/sim/test_state_output.cpp
   test/sim/test_stone_simulation.cpp
   test/sim/test_mesh_file.cpp
   test/sim/test_clock_watch.cpp)

@@ -7,6 +7,7 @@
 #include <exception>
 #include <stdexcept>
 
+#include "virtual_go/common/formatting.h"
 #include "virtual_go/common/sim_time.h"
 #include "virtual_go/ros/param_reader.h"
 #include "virtual_go/ros/stone_messages.h"
@@ -35,14 +36,15 @@ Eigen::Vector4d to_xyzw(const geometry_msgs::Quaternion& q) {
   return Eigen::Vector4d(q.x, q.y, q.z, q.w);
 }
 
-// Runs a request; a rejection becomes success false with the reason, the state untouched.
+// Runs a request; a refusal becomes success false with the reason, the state untouched. The
+// reasons quote user strings cut short (quote_user_text), so neither the answer nor the log
+// line grows with the request.
 template <class Response, class Request>
 void answer(const char* service, const Request& request, Response& response) {
   try {
-    request();
+    response.message = request();
     response.success = true;
-    response.message = "applied at the next physics step";
-  } catch (const InvalidArgument& e) {
+  } catch (const std::exception& e) {  // InvalidArgument (a field), RequestRefused, any other
     response.success = false;
     response.message = e.what();
     ROS_WARN("stone_node: %s refused: %s", service, e.what());
@@ -79,7 +81,7 @@ visualization_msgs::Marker make_marker(const StoneSimulation& sim) {
 
 StoneConfig read_config(const ros::NodeHandle& private_nh) {
   for (const std::string& name : unknown_parameters(private_nh)) {
-    ROS_WARN("ignoring unknown parameter ~%s (see stone_node --help)", name.c_str());
+    ROS_WARN("ignoring unknown parameter ~%s (see stone_node --help)", cut_user_text(name).c_str());
   }
   return read_stone_config(private_nh);
 }
@@ -137,25 +139,33 @@ StoneNode::StoneNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_n
 }
 
 void StoneNode::on_timer(const ros::TimerEvent&) {
+  // update() never throws; a failure comes back once in result.error, with its cause.
   const std::int64_t now_ns = static_cast<std::int64_t>(ros::Time::now().toNSec());
   const UpdateResult result = sim_.update(now_ns);
   if (!result.error.empty()) {
-    ROS_ERROR_THROTTLE(1.0, "stone_node: physics step failed, state held at %.9f s: %s",
-                       to_seconds(result.stamp_ns), result.error.c_str());
+    ROS_ERROR(
+        "stone_node: %s; the state is held and nothing is published until ~reset or "
+        "~set_state",
+        result.error.c_str());
   }
-  for (const SegmentEvent& event : result.events) {
-    if (event.reason == EventReason::time_jump) {
-      ROS_WARN("stone_node: ROS time jumped to %.9f s; the stone continues from there",
-               to_seconds(event.stamp_ns));
+  try {
+    for (const SegmentEvent& event : result.events) {
+      if (event.reason == EventReason::time_jump) {
+        ROS_WARN("stone_node: ROS time jumped to %.9f s; the stone continues from there",
+                 to_seconds(event.stamp_ns));
+      }
+      if (event.reason == EventReason::start) info_pub_.publish(to_info_msg(sim_));
     }
-    if (event.reason == EventReason::start) info_pub_.publish(to_info_msg(sim_));
-  }
-  publish_events(result);
-  // Only a state that advanced is published: each stamp appears once (no TF_REPEATED_DATA).
-  if (result.advanced) publish_state(result.stamp_ns);
-  if (result.advanced && !marker_sent_) {
-    marker_pub_.publish(marker_);
-    marker_sent_ = true;
+    publish_events(result);
+    // Only a state that advanced is published: each stamp appears once (no TF_REPEATED_DATA).
+    if (result.advanced) publish_state(result.stamp_ns);
+    if (result.advanced && !marker_sent_) {
+      marker_pub_.publish(marker_);
+      marker_sent_ = true;
+    }
+  } catch (const std::exception& e) {
+    // Publishing (ROS serialisation, a broken connection) must not end the node either.
+    ROS_ERROR_THROTTLE(10.0, "stone_node: publishing failed: %s", e.what());
   }
 }
 
@@ -195,20 +205,20 @@ void StoneNode::on_clock_watch(const ros::WallTimerEvent&) {
 
 void StoneNode::publish_events(const UpdateResult& result) {
   for (const SegmentEvent& event : result.events) {
-    events_pub_.publish(to_event_msg(event, sim_.setup().model, sim_.config().world_frame));
+    events_pub_.publish(to_event_msg(event, sim_.config().world_frame));
   }
 }
 
 void StoneNode::publish_state(std::int64_t stamp_ns) {
   const StoneConfig& c = sim_.config();
-  const RigidBodyState& state = sim_.state();
+  const StateOutput& output = sim_.output();
   const ros::Time stamp = to_ros_time(stamp_ns);
-  tf_broadcaster_.sendTransform(to_transform_msg(state, stamp, c.world_frame, c.stone_frame));
+  tf_broadcaster_.sendTransform(to_transform_msg(output, stamp, c.world_frame, c.stone_frame));
   if (pose_pub_.getNumSubscribers() > 0) {
-    pose_pub_.publish(to_pose_stamped_msg(state, stamp, c.world_frame));
+    pose_pub_.publish(to_pose_stamped_msg(output, stamp, c.world_frame));
   }
   if (odom_pub_.getNumSubscribers() > 0) {
-    odom_pub_.publish(to_odometry_msg(sim_.body(), stamp, c.world_frame, c.stone_frame));
+    odom_pub_.publish(to_odometry_msg(output, stamp, c.world_frame, c.stone_frame));
   }
 }
 
@@ -216,14 +226,14 @@ bool StoneNode::on_set_angular_velocity(SetAngularVelocity::Request& request,
                                         SetAngularVelocity::Response& response) {
   answer(
       "set_angular_velocity",
-      [&] { sim_.set_angular_velocity(to_eigen(request.angular_velocity), request.frame); },
+      [&] { return sim_.set_angular_velocity(to_eigen(request.angular_velocity), request.frame); },
       response);
   return true;
 }
 
 bool StoneNode::on_reset(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response) {
   answer(
-      "reset", [&] { sim_.reset(); }, response);
+      "reset", [&] { return sim_.reset(); }, response);
   return true;
 }
 
@@ -231,8 +241,8 @@ bool StoneNode::on_set_state(SetState::Request& request, SetState::Response& res
   answer(
       "set_state",
       [&] {
-        sim_.set_state(to_eigen(request.pose.position), to_xyzw(request.pose.orientation),
-                       to_eigen(request.twist.linear), to_eigen(request.twist.angular));
+        return sim_.set_state(to_eigen(request.pose.position), to_xyzw(request.pose.orientation),
+                              to_eigen(request.twist.linear), to_eigen(request.twist.angular));
       },
       response);
   return true;

@@ -69,6 +69,11 @@ Services (changes take effect at the next physics step, which starts a new segme
                          "world" (default) or "stone"; rigid_body sets L = I w
   ~reset                 std_srvs/Trigger: back to the initial state (ROS time keeps running)
   ~set_state             virtual_go/SetState: pose and twist in the world frame
+  A request beyond the bounds below (~max_distance, ~max_speed, ~max_angular_velocity) is
+  refused with the field, the value and the limit. So are requests beyond the )"
+      << kMaxPendingRequests << R"( that
+  may wait for a physics step (none comes while ROS time stands still), and
+  ~set_angular_velocity while a failed step holds the state (~reset or ~set_state replace it).
 
 Parameters (name, unit, meaning; default):
 )";

@@ -22,24 +22,24 @@ namespace virtual_go {
 
 ros::Time to_ros_time(std::int64_t ns);
 
-geometry_msgs::Pose to_pose_msg(const RigidBodyState& state);
+// Messages of a StateOutput (sim/state_output.h): the numbers the simulation checked finite,
+// copied, so the node publishes nothing it did not check.
+geometry_msgs::Pose to_pose_msg(const StateOutput& output);
 // World-frame twist: linear m/s, angular rad/s.
-geometry_msgs::Twist to_world_twist_msg(const RigidBody& body);
+geometry_msgs::Twist to_world_twist_msg(const StateOutput& output);
 // Body-frame twist (the nav_msgs/Odometry convention): R^T v and the body angular velocity.
-geometry_msgs::Twist to_body_twist_msg(const RigidBody& body);
+geometry_msgs::Twist to_body_twist_msg(const StateOutput& output);
 
-geometry_msgs::TransformStamped to_transform_msg(const RigidBodyState& state,
-                                                 const ros::Time& stamp,
+geometry_msgs::TransformStamped to_transform_msg(const StateOutput& output, const ros::Time& stamp,
                                                  const std::string& world_frame,
                                                  const std::string& stone_frame);
-geometry_msgs::PoseStamped to_pose_stamped_msg(const RigidBodyState& state, const ros::Time& stamp,
+geometry_msgs::PoseStamped to_pose_stamped_msg(const StateOutput& output, const ros::Time& stamp,
                                                const std::string& world_frame);
-nav_msgs::Odometry to_odometry_msg(const RigidBody& body, const ros::Time& stamp,
+nav_msgs::Odometry to_odometry_msg(const StateOutput& output, const ros::Time& stamp,
                                    const std::string& world_frame, const std::string& stone_frame);
 
 StoneInfo to_info_msg(const StoneSimulation& sim);
-StoneEvent to_event_msg(const SegmentEvent& event, const MotionModel& model,
-                        const std::string& world_frame);
+StoneEvent to_event_msg(const SegmentEvent& event, const std::string& world_frame);
 // The lens as rviz draws it (body frame), for both marker forms below.
 TriangleMesh stone_display_mesh(const Stone& stone);
 // The tessellated lens as a TRIANGLE_LIST in the stone frame, locked to it so rviz moves it
