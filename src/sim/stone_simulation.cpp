@@ -83,6 +83,7 @@ void StoneSimulation::replace_state(const RigidBodyState& state) {
   StateOutput output = state_output(checked_.setup.model, state);  // throws: nothing changed
   state_ = state;
   output_ = output;
+  output_stale_ = false;
   flight_cache_.invalidate();  // the integrator must not continue the old motion
 }
 
@@ -171,6 +172,18 @@ void StoneSimulation::advance_to(std::int64_t now_ns, UpdateResult& result) {
         result.advanced = true;
         result.stamp_ns = clock_.time_ns();
       }
+      // What messages show of the state to publish: once per update, not at every step (the
+      // integrator refuses a non-finite state at every step; the derived numbers are checked
+      // here, before anything is published).
+      if (result.advanced && output_stale_) {
+        try {
+          output_ = state_output(checked_.setup.model, state_);
+          output_stale_ = false;
+        } catch (const std::exception& e) {
+          result.advanced = false;
+          hold(e.what(), result);
+        }
+      }
       return;
   }
   result.advanced = true;
@@ -210,11 +223,15 @@ void StoneSimulation::step(UpdateResult& result) {
     }
     reason = change.reason;
   }
-  const StateOutput output = state_output(model, next);  // nothing non-finite is published
+  // A new segment's event carries the outputs of its first state: checked before anything
+  // changes. Other steps leave them to the end of update().
+  std::optional<StateOutput> output;
+  if (reason) output = state_output(model, next);
 
   clock_.step();
   state_ = next;
-  output_ = output;
+  output_stale_ = !output;
+  if (output) output_ = *output;
   pending_.clear();
   if (reason) {
     flight_cache_.invalidate();  // the integrator must not continue the old motion

@@ -80,7 +80,7 @@ class StoneSimulation {
   bool started() const { return clock_.started(); }
   const RigidBodyState& state() const { return state_; }
   RigidBody body() const { return RigidBody(checked_.setup.model, state_); }
-  // What messages show of state(): checked finite when the state was made.
+  // What messages show of state() (after an update that advanced): checked finite.
   const StateOutput& output() const { return output_; }
   std::int64_t time_ns() const { return clock_.time_ns(); }
   // True after a failed step until a change replaces the state.
@@ -111,8 +111,9 @@ class StoneSimulation {
   std::unique_ptr<Integrator> integrator_;
   SimClock clock_;
   RigidBodyState state_;
-  StateOutput output_;
-  FlightCache flight_cache_;  // the stone's: what the integrator carries between its steps
+  StateOutput output_;         // of state_, unless output_stale_
+  bool output_stale_ = false;  // state_ moved on since output_ was computed
+  FlightCache flight_cache_;   // the stone's: what the integrator carries between its steps
   std::int64_t start_ns_ = 0;
   std::int64_t segment_start_ns_ = 0;
   std::uint32_t segment_ = 0;
