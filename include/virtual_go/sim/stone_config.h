@@ -39,11 +39,13 @@ constexpr double kMaxAutoResetPeriodS = 1e6;
 // simulated time t since a segment's start is below 2^63 ns = 9.3e9 s (int64 stamps), so
 //   |v(t)| <= V + G t               <= 3e8 + 1e12 * 9.3e9              < 1e22  m/s
 //   |x(t)| <= D + V t + G t^2 / 2   <= 1e12 + 2.8e18 + 4.3e31          < 1e32  m
+// and, with the lens's moments between those of a thin lens (I1 = m a^2 / 6, I3 = m a^2 / 3)
+// and a sphere (2 m a^2 / 5; docs/physics.md, "The lens"),
 //   I      <= m a^2 / 2             <= 1e12 * 500^2 / 2                < 2e17  kg m^2
-//   I      >= m a^2 / 4             >= 1e-12 * (5e-10)^2 / 4           > 6e-32 kg m^2 (normal)
+//   I      >= m a^2 / 6             >= 1e-12 * (5e-10)^2 / 6           > 4e-32 kg m^2 (normal)
 //   |L|    <= I |w|                 <= 2e17 * 1e9                      < 1e27  kg m^2/s
-//   |w|    <= |L| / I1 <= 2 W (I3 <= 2 I1 for a lens),  |w| t < 2e19 rad
-// and energies (m v^2, m g x, w L) below 1e56. Every intermediate of a quaternion-vector
+//   |w|    <= |L| / I1 <= 2 W (I3 <= 2 I1),                 |w| t  < 2e19  rad
+// and energies (m v^2, m g x, w L) at most about 1e56. Every intermediate of a quaternion-vector
 // product (at most 4x its input), a squared norm (< 1e64) or an energy is then far below the
 // largest double (1.8e308): no overflow anywhere in the flight, its messages or a bag.
 constexpr double kMaxSpeedCap = 299792458.0;    // m/s, the speed of light
