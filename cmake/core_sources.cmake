@@ -7,6 +7,8 @@ set(VG_CORE_SOURCES
   src/geometry/rotation.cpp
   src/geometry/lens_shape.cpp
   src/geometry/tessellation.cpp
+  src/geometry/lens_geometry.cpp
+  src/geometry/lens_distance.cpp
   src/body/mass_properties.cpp
   src/body/rigid_body_state.cpp
   src/body/motion_model.cpp
@@ -20,4 +22,14 @@ set(VG_CORE_SOURCES
   src/flight/exact_motion.cpp
   src/go/stone_sizes.cpp
   src/go/stone_materials.cpp
-  src/go/stone.cpp)
+  src/go/stone.cpp
+  src/go/board.cpp
+  src/go/board_distance.cpp
+  src/contact/material.cpp
+  src/contact/flight_gap_bound.cpp
+  src/contact/time_of_impact.cpp
+  src/contact/impact.cpp
+  src/contact/plane_region.cpp
+  src/contact/lens_on_plane.cpp
+  src/contact/plane_contact_dynamics.cpp
+  src/contact/plane_contact.cpp)

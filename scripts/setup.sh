@@ -13,7 +13,7 @@ VG_PACKAGES=(
   build-essential cmake python3 python3-catkin-pkg catkin
   ros-core-dev libroscpp-dev libtf2-ros-dev libtf2-eigen-dev librosbag-dev librostest-dev
   python3-rostest python3-rosbag ros-message-generation ros-std-srvs ros-geometry-msgs
-  ros-nav-msgs ros-visualization-msgs libeigen3-dev libgtest-dev
+  ros-nav-msgs ros-visualization-msgs libeigen3-dev libboost-dev libgtest-dev
   rviz tf2-tools tf-tools xvfb xauth imagemagick gnuplot-nox procps
 )
 # What the README's user commands need, which --no-install-recommends leaves out: rosrun

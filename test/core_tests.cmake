@@ -17,10 +17,23 @@ foreach(core_test
     flight/test_torque_free_motion
     flight/test_conservation
     flight/test_convergence
-    flight/test_constant_omega)
+    flight/test_constant_omega
+    geometry/test_lens_geometry
+    geometry/test_lens_distance
+    go/test_board
+    go/test_board_distance
+    contact/test_material
+    contact/test_flight_gap_bound
+    contact/test_time_of_impact
+    contact/test_impact
+    contact/test_plane_region
+    contact/test_lens_on_plane
+    contact/test_plane_contact_dynamics
+    contact/test_plane_contact)
   get_filename_component(target ${core_test} NAME)
   catkin_add_gtest(${target} test/${core_test}.cpp)
   target_link_libraries(${target} virtual_go_core GTest::gtest_main)
   # Tests that hold README.md's tables to the code read it from the source tree.
   target_compile_definitions(${target} PRIVATE VG_README="${PROJECT_SOURCE_DIR}/README.md")
 endforeach()
+

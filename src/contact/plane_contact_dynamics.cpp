@@ -1,0 +1,201 @@
+#include "virtual_go/contact/plane_contact_dynamics.h"
+
+#include <Eigen/LU>
+#include <cmath>
+
+#include "virtual_go/contact/lens_on_plane.h"
+
+namespace virtual_go {
+namespace {
+
+using Vector3 = Eigen::Vector3d;
+
+Eigen::Matrix3d inverse_inertia_world(const MotionModel& model, const Eigen::Matrix3d& rotation) {
+  if (model.kind() == MotionModelKind::constant_omega) {
+    return Eigen::Matrix3d::Identity() / model.isotropic_moment();
+  }
+  const Vector3 inverse_moments = model.mass_properties().principal_moments_body().cwiseInverse();
+  return rotation * inverse_moments.asDiagonal() * rotation.transpose();
+}
+
+// One constraint row: the acceleration of a velocity the mode holds at zero (the normal velocity
+// at P, a stuck slip component, a stuck angular component), affine in the multipliers.
+struct Row {
+  bool translational;  // direction . (a + alpha x r) + bias, else direction . alpha
+  Vector3 direction;
+  double bias;  // direction . (omega x dr/dt) for translational rows, else 0
+  // The row's acceleration without the bias.
+  double apply(const Vector3& a, const Vector3& alpha, const Vector3& r) const {
+    return translational ? direction.dot(a + alpha.cross(r)) : direction.dot(alpha);
+  }
+};
+
+// The generalized force of a unit multiplier: a force at P (and its torque) plus a couple.
+struct Column {
+  Vector3 force;
+  Vector3 torque;
+};
+
+}  // namespace
+
+Vector3 PlaneContactKinematics::slip_velocity() const {
+  const Vector3 u = velocity_world + angular_velocity_world.cross(offset_world);
+  return {u.x(), u.y(), 0.0};
+}
+
+Vector3 sliding_direction(const Vector3& velocity, const Vector3& reference, double layer_speed) {
+  const double speed = velocity.norm();
+  if (!(speed > layer_speed)) return reference;
+  return velocity.dot(reference) < 0.0 ? Vector3(-velocity / speed) : Vector3(velocity / speed);
+}
+
+PlaneContactKinematics plane_contact_kinematics(const PlaneContactSetup& setup,
+                                                const PlaneContactMode& mode,
+                                                const Eigen::Vector2d& position_xy_world,
+                                                const Eigen::Quaterniond& orientation,
+                                                const Eigen::Vector2d& velocity_xy_world,
+                                                const Eigen::Vector3d& angular_velocity_world) {
+  PlaneContactKinematics k;
+  k.orientation = orientation.normalized();
+  const Eigen::Matrix3d rotation = k.orientation.toRotationMatrix();
+  k.axis_world = rotation.col(2);
+  k.angular_velocity_world = angular_velocity_world;
+  if (mode.rolling.law == ContactLaw::stuck) {
+    k.angular_velocity_world.x() = 0.0;
+    k.angular_velocity_world.y() = 0.0;
+  }
+  if (mode.spinning.law == ContactLaw::stuck) k.angular_velocity_world.z() = 0.0;
+  k.offset_world = plane_contact_offset_world(setup.lens, mode.part, k.axis_world);
+  k.offset_rate_world = plane_contact_offset_rate_world(setup.lens, mode.part, k.axis_world,
+                                                        k.angular_velocity_world);
+  k.position_world = Vector3(position_xy_world.x(), position_xy_world.y(),
+                             setup.plane_height_m - k.offset_world.z());
+  // The material point at P: u = v_G + omega x r; u_z = 0 always, u_t = 0 when stuck.
+  const Vector3 spin_velocity_at_p = k.angular_velocity_world.cross(k.offset_world);
+  if (mode.tangential.law == ContactLaw::stuck) {
+    k.velocity_world = -spin_velocity_at_p;
+  } else {
+    k.velocity_world =
+        Vector3(velocity_xy_world.x(), velocity_xy_world.y(), -spin_velocity_at_p.z());
+  }
+  k.inertia_world = setup.model.inertia_world(k.orientation);
+  k.inverse_inertia_world = inverse_inertia_world(setup.model, rotation);
+  return k;
+}
+
+PlaneContactForces solve_plane_contact(const PlaneContactSetup& setup, const PlaneContactMode& mode,
+                                       const PlaneContactKinematics& k) {
+  const double m = setup.model.mass_properties().mass();
+  const ContactMaterial& law = setup.material;
+  const Vector3& r = k.offset_world;
+  const Vector3& w = k.angular_velocity_world;
+  const Vector3 ex = Vector3::UnitX(), ey = Vector3::UnitY(), ez = Vector3::UnitZ();
+  const Vector3 w_cross_r_dot = w.cross(k.offset_rate_world);
+
+  // Accelerations without contact: gravity and the gyroscopic term.
+  const Vector3 a_free = setup.gravity_world;
+  const Vector3 alpha_free = -k.inverse_inertia_world * w.cross(k.inertia_world * w);
+
+  // The normal force's column carries the sliding parts, which are proportional to N.
+  Vector3 tangential_direction = Vector3::Zero(), rolling_direction = Vector3::Zero();
+  double spin_sign = 0.0;
+  Column normal{ez, Vector3::Zero()};
+  if (mode.tangential.law == ContactLaw::sliding) {
+    tangential_direction =
+        sliding_direction(k.slip_velocity(), mode.tangential.reference_world, kSlipDirectionLayer);
+    normal.force -= law.friction * tangential_direction;
+  }
+  normal.torque = r.cross(normal.force);
+  if (mode.rolling.law == ContactLaw::sliding) {
+    rolling_direction =
+        sliding_direction(k.rolling_velocity(), mode.rolling.reference_world, kRollDirectionLayer);
+    normal.torque -= law.rolling_resistance_m * rolling_direction;
+  }
+  if (mode.spinning.law == ContactLaw::sliding) {
+    spin_sign = mode.spinning.reference_world.z() < 0.0 ? -1.0 : 1.0;
+    normal.torque -= law.spinning_friction_m * spin_sign * ez;
+  }
+
+  Row rows[6];
+  Column columns[6];
+  int n = 0;
+  rows[n] = {true, ez, ez.dot(w_cross_r_dot)};
+  columns[n++] = normal;
+  const bool tangential_stuck = mode.tangential.law == ContactLaw::stuck;
+  const bool rolling_stuck = mode.rolling.law == ContactLaw::stuck;
+  const bool spinning_stuck = mode.spinning.law == ContactLaw::stuck;
+  if (tangential_stuck) {
+    for (const Vector3& e : {ex, ey}) {
+      rows[n] = {true, e, e.dot(w_cross_r_dot)};
+      columns[n++] = {e, r.cross(e)};
+    }
+  }
+  if (rolling_stuck) {
+    for (const Vector3& e : {ex, ey}) {
+      rows[n] = {false, e, 0.0};
+      columns[n++] = {Vector3::Zero(), e};
+    }
+  }
+  if (spinning_stuck) {
+    rows[n] = {false, ez, 0.0};
+    columns[n++] = {Vector3::Zero(), ez};
+  }
+
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 6, 6> a(n, n);
+  Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1> rhs(n);
+  Vector3 column_a[6], column_alpha[6];
+  for (int j = 0; j < n; ++j) {
+    column_a[j] = columns[j].force / m;
+    column_alpha[j] = k.inverse_inertia_world * columns[j].torque;
+  }
+  for (int i = 0; i < n; ++i) {
+    rhs(i) = -rows[i].apply(a_free, alpha_free, r) - rows[i].bias;
+    for (int j = 0; j < n; ++j) a(i, j) = rows[i].apply(column_a[j], column_alpha[j], r);
+  }
+  PlaneContactForces f;
+  const Eigen::FullPivLU<decltype(a)> lu(a);
+  if (!lu.isInvertible()) return f;
+  const auto lambda = lu.solve(rhs).eval();
+  if (!lambda.allFinite()) return f;
+  f.solved = true;
+
+  f.linear_acceleration_world = a_free;
+  f.angular_acceleration_world = alpha_free;
+  for (int j = 0; j < n; ++j) {
+    f.linear_acceleration_world += lambda(j) * column_a[j];
+    f.angular_acceleration_world += lambda(j) * column_alpha[j];
+  }
+  const double normal_force = lambda(0);
+  f.normal_force_n = normal_force;
+  int next = 1;
+  if (tangential_stuck) {
+    f.friction_force_world = lambda(next) * ex + lambda(next + 1) * ey;
+    next += 2;
+  } else if (mode.tangential.law == ContactLaw::sliding) {
+    f.friction_force_world = -law.friction * normal_force * tangential_direction;
+  }
+  if (rolling_stuck) {
+    f.rolling_couple_world = lambda(next) * ex + lambda(next + 1) * ey;
+    next += 2;
+  } else if (mode.rolling.law == ContactLaw::sliding) {
+    f.rolling_couple_world = -law.rolling_resistance_m * normal_force * rolling_direction;
+  }
+  if (spinning_stuck) {
+    f.spinning_couple_nm = lambda(next);
+  } else if (mode.spinning.law == ContactLaw::sliding) {
+    f.spinning_couple_nm = -law.spinning_friction_m * normal_force * spin_sign;
+  }
+  const Vector3 u_dot =
+      f.linear_acceleration_world + f.angular_acceleration_world.cross(r) + w_cross_r_dot;
+  f.slip_acceleration_world = Vector3(u_dot.x(), u_dot.y(), 0.0);
+  return f;
+}
+
+double plane_contact_energy(const PlaneContactSetup& setup, const PlaneContactKinematics& k) {
+  const double m = setup.model.mass_properties().mass();
+  const Vector3& w = k.angular_velocity_world;
+  return 0.5 * m * k.velocity_world.squaredNorm() + 0.5 * w.dot(k.inertia_world * w) -
+         m * setup.gravity_world.dot(k.position_world);
+}
+
+}  // namespace virtual_go
