@@ -8,7 +8,10 @@ add_library(virtual_go_sim
   src/sim/stone_parameters.cpp
   src/sim/state_request.cpp
   src/sim/segment_event.cpp
-  src/sim/stone_simulation.cpp)
+  src/sim/state_output.cpp
+  src/sim/stone_simulation.cpp
+  src/sim/mesh_file.cpp
+  src/sim/clock_watch.cpp)
 target_link_libraries(virtual_go_sim PUBLIC virtual_go_core)
 
 add_executable(stone_node

@@ -9,7 +9,7 @@ usage: scripts/run.sh [ARG:=VALUE ...]
   Set up (packages, build), then `roslaunch virtual_go stone.launch`, with rviz:=true when
   $DISPLAY is set. Arguments go to roslaunch, for example:
     scripts/run.sh config:=$PWD/config/tumble.yaml      the wobbling stone, no gravity
-    scripts/run.sh record:=true bag:=$PWD/run.bag        also record a bag (default ./virtual_go.bag)
+    scripts/run.sh record:=true                          also record ./virtual_go.bag (bag:=FILE for another)
     scripts/run.sh rviz:=false                           headless even with a display
   Stop with Ctrl-C. Topics, services and parameters: README.md, "The ROS node".
 USAGE

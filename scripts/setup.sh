@@ -16,6 +16,14 @@ VG_PACKAGES=(
   ros-nav-msgs ros-visualization-msgs libeigen3-dev libboost-dev libgtest-dev
   rviz tf2-tools tf-tools xvfb xauth imagemagick gnuplot-nox procps
 )
+# What the README's user commands need, which --no-install-recommends leaves out: rosrun
+# (rosbash, only a Recommends of ros-core), and the Python modules of every message type a
+# user inspects with rostopic, rosservice or rosbag (they cannot load a type without them).
+# genpy generates this package's own (virtual_go/StoneInfo, ...) into the devel space.
+VG_PACKAGES+=(
+  rosbash python3-genpy python3-std-msgs python3-geometry-msgs python3-nav-msgs
+  python3-visualization-msgs python3-std-srvs python3-tf2-msgs python3-rosgraph-msgs
+)
 
 vg_sudo() {
   if [ "$(id -u)" -eq 0 ]; then "$@"; else sudo "$@"; fi

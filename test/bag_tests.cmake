@@ -1,7 +1,8 @@
 # Tests of bag_report (README.md, "Recording, replay and bag_report"). Included by CMakeLists.txt inside CATKIN_ENABLE_TESTING.
 
 # The analysis on plain data (no bag, no master).
-catkin_add_gtest(test_bag_analysis test/bag/test_bag_analysis.cpp test/support/test_bags.cpp)
+catkin_add_gtest(test_bag_analysis test/bag/test_bag_analysis.cpp test/bag/test_message_check.cpp
+  test/support/test_bags.cpp)
 target_link_libraries(test_bag_analysis virtual_go_bag_report GTest::gtest_main)
 # Checks README.md's table of error-bound constants against the code.
 target_compile_definitions(test_bag_analysis PRIVATE VG_README="${PROJECT_SOURCE_DIR}/README.md")

@@ -2,6 +2,7 @@
 # Included by CMakeLists.txt inside if(CATKIN_ENABLE_TESTING).
 foreach(core_test
     common/test_bad_input
+    common/test_formatting
     common/test_name_table
     common/test_sim_time
     geometry/test_rotation

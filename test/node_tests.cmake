@@ -1,12 +1,16 @@
 # Tests of the stone node. Included by CMakeLists.txt inside if(CATKIN_ENABLE_TESTING).
 
-# The ROS-free adapter (clock, parameters, requests, simulation): gtest, no master.
+# The ROS-free adapter (clock, parameters, requests, outputs, simulation, mesh file, clock
+# watch): gtest, no master.
 catkin_add_gtest(node_adapter_test
   test/sim/test_sim_clock.cpp
   test/sim/test_stone_config.cpp
   test/sim/test_stone_parameters.cpp
   test/sim/test_state_request.cpp
-  test/sim/test_stone_simulation.cpp)
+  test/sim/test_state_output.cpp
+  test/sim/test_stone_simulation.cpp
+  test/sim/test_mesh_file.cpp
+  test/sim/test_clock_watch.cpp)
 target_link_libraries(node_adapter_test virtual_go_sim GTest::gtest_main)
 # Checks README.md's parameter table against the code.
 target_compile_definitions(node_adapter_test PRIVATE VG_README="${PROJECT_SOURCE_DIR}/README.md")
@@ -34,3 +38,8 @@ endforeach()
 
 # rviz under Xvfb (the test starts Xvfb and rviz itself and reads a screenshot).
 add_rostest(test/ros/rviz_smoke.test DEPENDENCIES stone_node)
+
+# README.md, pasted: its commands run as a user types them (test/ros/test_readme_commands.py).
+add_rostest(test/ros/readme_commands.test DEPENDENCIES stone_node bag_report)
+# use_sim_time without /clock: the node says it waits (test/ros/test_stone_node_clock_wait.py).
+add_rostest(test/ros/stone_node_clock_wait.test DEPENDENCIES stone_node)

@@ -12,11 +12,15 @@
 #include <virtual_go/StoneEvent.h>
 #include <virtual_go/StoneInfo.h>
 
+#include <cstdio>
 #include <cstring>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 
+#include "virtual_go/bag/message_check.h"
+#include "virtual_go/common/formatting.h"
 #include "virtual_go/common/sim_time.h"
 
 namespace virtual_go {
@@ -55,18 +59,25 @@ bool starts_with_header(const std::string& definition) {
 
 // Reads the header stamp of any message type from its serialized bytes (the types bag_report
 // does not otherwise know still get header stamps, not receipt times).
-bool header_stamp(const rosbag::MessageInstance& m, std::int64_t& stamp_ns) {
-  const std::uint32_t size = m.size();
-  if (size < 12) return false;
-  std::vector<std::uint8_t> buffer(size);
-  ros::serialization::OStream stream(buffer.data(), size);
-  m.write(stream);
+bool header_stamp(const std::vector<std::uint8_t>& bytes, std::int64_t& stamp_ns) {
+  if (bytes.size() < 12) return false;
   std::uint32_t sec = 0, nsec = 0;  // ROS serializes little-endian, as the hosts it runs on
-  std::memcpy(&sec, buffer.data() + 4, 4);
-  std::memcpy(&nsec, buffer.data() + 8, 4);
+  std::memcpy(&sec, bytes.data() + 4, 4);
+  std::memcpy(&nsec, bytes.data() + 8, 4);
   stamp_ns = stamp_to_ns(sec, nsec);
   return true;
 }
+
+// The message of type M in `bytes`, or nothing when the bag's type differs (another md5sum,
+// as rosbag's instantiate refuses it). Throws CorruptMessage for sizes the bytes cannot hold.
+template <class M>
+std::optional<M> decode(const rosbag::MessageInstance& m, const std::vector<std::uint8_t>& bytes) {
+  if (m.getMD5Sum() != ros::message_traits::md5sum<M>()) return std::nullopt;
+  return checked_deserialize<M>(bytes);
+}
+
+// Corrupt messages named in the problems; past this many, only counted.
+constexpr std::size_t kCorruptNamed = 5;
 
 class Reader {
  public:
@@ -92,24 +103,43 @@ class Reader {
     ++out_.message_count;
     const std::string& topic = m.getTopic();
     const std::string& type = m.getDataType();
-    if (type == kTfType && topic != "/tf_static") {
-      read_tf(m);
-    } else {
-      TopicStamps& t = topic_stamps(topic, type);
-      std::int64_t stamp = 0;
-      if (t.header_stamps && header_stamp(m, stamp)) {
-        t.stamps_ns.push_back(stamp);
+    // The bytes once (the record's own length, within the chunk rosbag already holds); each
+    // reader below checks the sizes they declare before it deserialises.
+    bytes_.resize(m.size());
+    ros::serialization::OStream stream(bytes_.data(), m.size());
+    m.write(stream);
+    try {
+      if (type == kTfType && topic != "/tf_static") {
+        read_tf(m);
       } else {
-        t.header_stamps = false;
-        t.stamps_ns.push_back(to_ns(m.getTime()));
+        TopicStamps& t = topic_stamps(topic, type);
+        std::int64_t stamp = 0;
+        if (t.header_stamps && header_stamp(bytes_, stamp)) {
+          t.stamps_ns.push_back(stamp);
+        } else {
+          t.header_stamps = false;
+          t.stamps_ns.push_back(to_ns(m.getTime()));
+        }
+      }
+      if (topic == info_topic_) read_info(m);
+      if (topic == out_.odom_topic) read_odom(m);
+      if (topic == out_.events_topic) read_event(m);
+    } catch (const CorruptMessage& e) {
+      // One bad message is skipped and named; the rest of the bag is read.
+      if (++corrupt_ <= kCorruptNamed) {
+        out_.problems.push_back("message " + std::to_string(out_.message_count) + " (" +
+                                cut_user_text(topic) + " at " + receipt_text(m) + " s, " +
+                                std::to_string(bytes_.size()) +
+                                " bytes) is corrupt and was skipped: " + e.what());
       }
     }
-    if (topic == info_topic_) read_info(m);
-    if (topic == out_.odom_topic) read_odom(m);
-    if (topic == out_.events_topic) read_event(m);
   }
 
   void finish() {
+    if (corrupt_ > kCorruptNamed) {
+      out_.problems.push_back(std::to_string(corrupt_) + " corrupt messages were skipped in all (" +
+                              std::to_string(kCorruptNamed) + " named above)");
+    }
     const std::string world = out_.info ? out_.info->world_frame : "world";
     const std::string stone = out_.info ? out_.info->stone_frame : "stone";
     for (TopicStamps& t : out_.topics) {
@@ -170,7 +200,7 @@ class Reader {
   }
 
   void read_tf(const rosbag::MessageInstance& m) {
-    const tf2_msgs::TFMessage::ConstPtr tf = m.instantiate<tf2_msgs::TFMessage>();
+    const std::optional<tf2_msgs::TFMessage> tf = decode<tf2_msgs::TFMessage>(m, bytes_);
     if (!tf) return;
     // One row per frame pair: a /tf that carries several robots must not look jittery.
     for (const geometry_msgs::TransformStamped& t : tf->transforms) {
@@ -182,7 +212,7 @@ class Reader {
   }
 
   void read_info(const rosbag::MessageInstance& m) {
-    const StoneInfo::ConstPtr msg = m.instantiate<StoneInfo>();
+    const std::optional<StoneInfo> msg = decode<StoneInfo>(m, bytes_);
     if (!msg || out_.info) return;  // the first info describes the run
     RecordingInfo info;
     info.topic = m.getTopic();
@@ -201,7 +231,7 @@ class Reader {
   }
 
   void read_odom(const rosbag::MessageInstance& m) {
-    const nav_msgs::Odometry::ConstPtr msg = m.instantiate<nav_msgs::Odometry>();
+    const std::optional<nav_msgs::Odometry> msg = decode<nav_msgs::Odometry>(m, bytes_);
     if (!msg) return;
     OdomSample s;
     s.stamp_ns = to_ns(msg->header.stamp);
@@ -214,7 +244,7 @@ class Reader {
   }
 
   void read_event(const rosbag::MessageInstance& m) {
-    const StoneEvent::ConstPtr msg = m.instantiate<StoneEvent>();
+    const std::optional<StoneEvent> msg = decode<StoneEvent>(m, bytes_);
     if (!msg) return;
     SegmentEvent e;
     e.stamp_ns = to_ns(msg->header.stamp);
@@ -227,8 +257,14 @@ class Reader {
     out_.events.push_back(e);
   }
 
+  static std::string receipt_text(const rosbag::MessageInstance& m) {
+    return stamp_text(to_ns(m.getTime()));
+  }
+
   Recording& out_;
   std::string ns_;
+  std::vector<std::uint8_t> bytes_;  // the current message, serialized
+  std::size_t corrupt_ = 0;
   std::string info_topic_, pose_topic_;
   std::map<std::string, std::string> types_, definitions_;
   std::set<std::string> latched_;

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <cstdlib>
 
+#include "virtual_go/common/formatting.h"
+
 namespace virtual_go {
 namespace bag {
 namespace {
@@ -11,7 +13,7 @@ double parse_limit(const std::string& option, const std::string& text) {
   char* end = nullptr;
   const double v = std::strtod(text.c_str(), &end);
   if (text.empty() || *end != '\0' || !std::isfinite(v) || v < 0.0) {
-    throw UsageError(option + " needs a finite number >= 0, got '" + text + "'");
+    throw UsageError(option + " needs a finite number >= 0, got " + quote_user_text(text));
   }
   return v;
 }

@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "virtual_go/body/rigid_body.h"
+#include "virtual_go/common/formatting.h"
 #include "virtual_go/common/sim_time.h"
 #include "virtual_go/common/validation.h"
 #include "virtual_go/flight/exact_motion.h"
@@ -19,6 +20,12 @@ namespace {
 // that starts at rest at the origin (where E0 itself is zero).
 double energy_scale(const RigidBody& body, const Eigen::Vector3d& gravity) {
   return body.kinetic_energy() + std::abs(body.potential_energy(gravity));
+}
+
+// "the set_state event at 100.500000000 s" or "the first odom at ...".
+std::string start_text(const SegmentPlan& plan) {
+  return "the " + (plan.from_event ? cut_user_text(plan.reason) + " event" : plan.reason) + " at " +
+         stamp_text(plan.start_ns) + " s";
 }
 
 }  // namespace
@@ -148,16 +155,16 @@ PhysicsResult check_physics(const RecordingInfo& info, const std::vector<OdomSam
     try {
       start = seg.plan.from_event ? state_from_event(events[seg.plan.event_index])
                                   : state_from_odom(model, odom[seg.plan.first]);
-    } catch (const InvalidArgument& e) {
-      seg.note = std::string("unusable start state: ") + e.what();
+    } catch (const std::exception& e) {
+      seg.note = "unusable start state (" + start_text(seg.plan) + "): " + e.what();
     }
     std::optional<ExactMotion> exact;
     if (start) {
       try {
         exact.emplace(setup, *start);
         seg.predicted = true;
-      } catch (const InvalidArgument& e) {
-        seg.note = std::string("no closed form: ") + e.what();
+      } catch (const std::exception& e) {
+        seg.note = "no closed form from " + start_text(seg.plan) + ": " + e.what();
       }
     }
 
@@ -211,10 +218,28 @@ PhysicsResult check_physics(const RecordingInfo& info, const std::vector<OdomSam
         } else {
           p.energy_drift = p.momentum_drift = nan;
         }
+        std::optional<RigidBodyState> predicted;
         if (exact) {
-          const RigidBodyState predicted = exact->state_at(p.t_s);
-          p.orientation_error = orientation_error(predicted.orientation, s.orientation);
-          p.position_error = (predicted.position_world - s.position_world).norm();
+          try {
+            predicted = exact->state_at(p.t_s);
+          } catch (const std::exception& e) {
+            // The closed form from this segment's start cannot reach t (a start state so
+            // large that the parabola overflows): this segment has no prediction, and only
+            // this one. Figures already computed for it are dropped with it.
+            exact.reset();
+            seg.predicted = false;
+            seg.note = "no prediction: the closed form from " + start_text(seg.plan) +
+                       " fails at t = " + format_value(p.t_s) + " s: " + e.what();
+            for (PhysicsSample& earlier : result.samples) {
+              if (earlier.segment == p.segment) earlier.orientation_error = nan;
+              if (earlier.segment == p.segment) earlier.position_error = nan;
+            }
+            seg.max_orientation_error = seg.max_position_error = 0.0;
+          }
+        }
+        if (predicted) {
+          p.orientation_error = orientation_error(predicted->orientation, s.orientation);
+          p.position_error = (predicted->position_world - s.position_world).norm();
         } else {
           p.orientation_error = p.position_error = nan;
         }
@@ -231,6 +256,15 @@ PhysicsResult check_physics(const RecordingInfo& info, const std::vector<OdomSam
       seg.max_orientation_error = std::fmax(seg.max_orientation_error, p.orientation_error);
       seg.max_position_error = std::fmax(seg.max_position_error, p.position_error);
       result.samples.push_back(p);
+    }
+    // A start state whose energy overflows (as huge as the one above) gives no energy drift:
+    // say so rather than let every NaN drift read as the 0 that the maxima start from.
+    if (start && !(std::isfinite(e0) && std::isfinite(scale))) {
+      seg.max_energy_drift = nan;
+      for (PhysicsSample& p : result.samples) {
+        if (p.segment == result.segments.size()) p.energy_drift = nan;
+      }
+      if (seg.note.empty()) seg.note = "the energy of " + start_text(seg.plan) + " overflows";
     }
     if (start) {
       seg.max_angular_speed = std::max(

@@ -29,7 +29,8 @@ std::string sci(double v) {
   return out.str();
 }
 
-std::string stamp_text(std::int64_t ns) { return fixed(to_seconds(ns), 6); }
+// Microseconds are enough for a report line.
+std::string short_stamp_text(std::int64_t ns) { return fixed(to_seconds(ns), 6); }
 
 std::string vector_text(const Eigen::Vector3d& v) {
   std::ostringstream out;
@@ -42,9 +43,9 @@ void print_stamp_events(std::ostream& out, const std::string& topic, const char*
                         const std::vector<StampEvent>& events) {
   constexpr std::size_t kShown = 5;
   for (std::size_t i = 0; i < events.size() && i < kShown; ++i) {
-    out << "  " << what << " " << topic << " at " << stamp_text(events[i].stamp_ns) << " s (step "
-        << fixed(to_seconds(events[i].step_ns) * 1e3, 3) << " ms, message " << events[i].index
-        << ")\n";
+    out << "  " << what << " " << topic << " at " << short_stamp_text(events[i].stamp_ns)
+        << " s (step " << fixed(to_seconds(events[i].step_ns) * 1e3, 3) << " ms, message "
+        << events[i].index << ")\n";
   }
   if (events.size() > kShown) {
     out << "  ... " << events.size() - kShown << " more " << what << " on " << topic << "\n";
@@ -65,10 +66,21 @@ Report analyse(Recording recording, const LimitOverrides& limits) {
     r.stats.push_back(compute_stamp_statistics(t.stamps_ns));
   }
   if (r.recording.info && !r.recording.odom.empty()) {
+    // Only ~info itself is blamed on ~info; a bad event or sample affects its own segment
+    // inside check_physics, and anything else that fails is named as what it is.
+    bool info_ok = false;
     try {
-      r.physics = check_physics(*r.recording.info, r.recording.odom, r.recording.events);
-    } catch (const InvalidArgument& e) {
+      model_from_info(*r.recording.info);
+      info_ok = true;
+    } catch (const std::exception& e) {
       r.problems.push_back(std::string("~info cannot describe the motion: ") + e.what());
+    }
+    if (info_ok) {
+      try {
+        r.physics = check_physics(*r.recording.info, r.recording.odom, r.recording.events);
+      } catch (const std::exception& e) {
+        r.problems.push_back(std::string("physics check failed: ") + e.what());
+      }
     }
   }
   r.checks = run_checks(r.recording, r.stats, r.physics ? &*r.physics : nullptr, limits);
@@ -130,7 +142,7 @@ void print_report(std::ostream& out, const Report& report) {
     for (std::size_t k = 0; k < p.segments.size(); ++k) {
       const SegmentResult& s = p.segments[k];
       out << "  " << std::right << std::setw(3) << k << "  " << std::left << std::setw(22)
-          << s.plan.reason << std::right << std::setw(14) << stamp_text(s.plan.start_ns)
+          << s.plan.reason << std::right << std::setw(14) << short_stamp_text(s.plan.start_ns)
           << std::setw(10) << fixed(s.duration_s, 3) << std::setw(8) << s.samples << std::setw(11)
           << fixed(s.max_angular_speed, 3);
       if (s.samples == 0) {
@@ -161,7 +173,7 @@ void print_report(std::ostream& out, const Report& report) {
     auto print_non_finite = [&](const NonFiniteValues& v, const std::string& what) {
       if (v.count == 0) return;
       out << "  non-finite values      " << v.count << " " << what << " (first at "
-          << stamp_text(v.first_stamp_ns) << " s, " << v.first_field
+          << short_stamp_text(v.first_stamp_ns) << " s, " << v.first_field
           << "), left out of the maxima above\n";
     };
     print_non_finite(p.non_finite_odom, "~odom samples");
@@ -192,7 +204,7 @@ void write_csv(const std::string& path, const Report& report) {
     const std::int64_t t0 = samples.empty() ? 0 : samples.front().stamp_ns;
     out << std::setprecision(12);
     for (const PhysicsSample& s : samples) {
-      out << s.segment << "," << stamp_text(s.stamp_ns).substr(0) << ","
+      out << s.segment << "," << short_stamp_text(s.stamp_ns).substr(0) << ","
           << fixed(seconds_between(t0, s.stamp_ns), 9) << "," << fixed(s.t_s, 9) << ","
           << s.quat_norm_error << "," << s.energy_drift << "," << s.momentum_drift << ","
           << s.orientation_error << "," << s.position_error << "," << s.angular_speed << "\n";

@@ -51,8 +51,8 @@ PhysicsBounds physics_bounds(const std::string& integrator, double dt_s,
                               overrides.energy_drift && overrides.momentum_drift;
   const IntegratorInfo* info = find_integrator(integrator);
   if (info == nullptr && !all_overridden) {
-    throw InvalidArgument("integrator", "unknown integrator '" + integrator +
-                                            "' in ~info (known: " + join(integrator_names(), " ") +
+    throw InvalidArgument("integrator", "unknown integrator " + quote_user_text(integrator) +
+                                            " in ~info (known: " + join(integrator_names(), " ") +
                                             "); pass --max-orientation-error, "
                                             "--max-position-error, --max-energy-drift and "
                                             "--max-momentum-drift");

@@ -1,17 +1,35 @@
 #include "virtual_go/body/mass_properties.h"
 
 #include <cmath>
+#include <limits>
+#include <string>
 
 #include "virtual_go/common/validation.h"
 
 namespace virtual_go {
 
+namespace {
+
+// Positive, finite and normal: a subnormal value has fewer significant digits (a moment of
+// 1e-310 kg m^2 keeps 11 of them, and w = L / I then comes back as 29.875 for 30).
+void require_normal(const std::string& field, double value, const char* unit) {
+  require_positive(field, value);
+  if (value < std::numeric_limits<double>::min()) {
+    throw InvalidArgument(field, field + " " + format_value(value) + " " + unit +
+                                     " is below the smallest normal double " +
+                                     format_value(std::numeric_limits<double>::min()) +
+                                     ": too small to compute with");
+  }
+}
+
+}  // namespace
+
 MassProperties::MassProperties(double mass, const Eigen::Vector3d& principal_moments_body)
     : mass_(mass), moments_body_(principal_moments_body) {
-  require_positive("mass", mass);
-  require_positive("principal moment Ixx", principal_moments_body.x());
-  require_positive("principal moment Iyy", principal_moments_body.y());
-  require_positive("principal moment Izz", principal_moments_body.z());
+  require_normal("mass", mass, "kg");
+  require_normal("principal moment Ixx", principal_moments_body.x(), "kg m^2");
+  require_normal("principal moment Iyy", principal_moments_body.y(), "kg m^2");
+  require_normal("principal moment Izz", principal_moments_body.z(), "kg m^2");
 }
 
 MassProperties MassProperties::of_lens(const LensShape& shape, double density) {

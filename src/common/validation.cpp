@@ -1,6 +1,7 @@
 #include "virtual_go/common/validation.h"
 
 #include <cmath>
+#include <limits>
 
 namespace virtual_go {
 
@@ -23,6 +24,22 @@ void require_positive(const std::string& field, double value) {
   }
 }
 
+double norm_without_overflow(const Eigen::Vector3d& v) {
+  const double largest = v.cwiseAbs().maxCoeff();
+  // Squares of components in [1e-150, 1e150] neither overflow nor lose digits.
+  if (!(largest > 0.0) || std::isinf(largest)) return largest;
+  if (largest >= 1e-150 && largest <= 1e150) return v.norm();
+  return largest * (v / largest).norm();
+}
+
+std::string norm_text(const Eigen::Vector3d& v) {
+  const double norm = norm_without_overflow(v);
+  if (std::isinf(norm) && v.allFinite()) {
+    return "> " + format_value(std::numeric_limits<double>::max());
+  }
+  return "= " + format_value(norm);
+}
+
 Eigen::Quaterniond require_unit_quaternion(const std::string& field, const Eigen::Quaterniond& q) {
   const Eigen::Vector4d c = q.coeffs();
   // The message text is built only on failure: this check runs on every validated state.
@@ -33,9 +50,14 @@ Eigen::Quaterniond require_unit_quaternion(const std::string& field, const Eigen
   if (!c.allFinite()) {
     throw InvalidArgument(field, field + " must be finite, got " + text());
   }
-  double norm = c.norm();
-  // Huge finite coefficients overflow the plain norm (giving a zero quaternion); scale instead.
-  if (std::isinf(norm)) norm = c.stableNorm();
+  const double norm = c.norm();
+  if (std::isinf(norm)) {
+    // Coefficients near the largest double overflow the sum of squares, and even a scaled
+    // norm overflows when |q| itself exceeds the largest double (dividing by it would give a
+    // zero quaternion). Divided by its largest coefficient first, q has a norm in [1, 2].
+    const Eigen::Vector4d scaled = c / c.cwiseAbs().maxCoeff();
+    return Eigen::Quaterniond(scaled / scaled.norm());
+  }
   if (!(norm > 1e-9)) {
     throw InvalidArgument(field, field + " must be a non-zero quaternion, got " + text());
   }

@@ -20,6 +20,13 @@ Eigen::Quaterniond rotation_exp(const Eigen::Vector3d& v) {
   return Eigen::Quaterniond(std::cos(half), s * v.x(), s * v.y(), s * v.z());
 }
 
+Eigen::Vector3d rotate_without_overflow(const Eigen::Quaterniond& q, const Eigen::Vector3d& v) {
+  // Below 1e150 every intermediate of the plain product is below 4e150: no overflow.
+  const double largest = v.cwiseAbs().maxCoeff();
+  if (!(largest > 1e150) || std::isinf(largest)) return q * v;
+  return (q * Eigen::Vector3d(v / largest)) * largest;
+}
+
 double orientation_error(const Eigen::Quaterniond& reference, const Eigen::Quaterniond& q) {
   const Eigen::Quaterniond d = reference.conjugate() * q;
   return 2.0 * std::atan2(d.vec().norm(), std::abs(d.w()));

@@ -26,6 +26,14 @@ Stone make_stone(const StoneSpec& spec) {
   const double size_height = blaming("size_number", [&] {
     return thickness_for_size(spec.size_number.value_or(kDefaultSizeNumber));
   });
+  // Without a given height or size, the height is the default size's: a width not above it
+  // is the width's fault (the user set only the width), not the size's.
+  if (!spec.height && !spec.size_number && !(size_height < spec.width)) {
+    throw InvalidArgument("width", "stone width " + format_value(spec.width) +
+                                       " m must be more than the height " +
+                                       format_value(size_height) + " m of the default size " +
+                                       std::to_string(kDefaultSizeNumber));
+  }
   // The width is fine by now: what the lens refuses is the height, from whichever field set it.
   const char* height_field = spec.height ? "height" : "size_number";
   const LensShape shape = blaming(

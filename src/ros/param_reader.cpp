@@ -4,13 +4,16 @@
 
 #include <sstream>
 
+#include "virtual_go/common/formatting.h"
+
 namespace virtual_go {
 namespace {
 
+// The value as the parameter server holds it, cut short: it comes from the user.
 std::string describe(XmlRpc::XmlRpcValue& value) {
   std::ostringstream out;
   value.write(out);
-  return out.str();
+  return cut_user_text(out.str());
 }
 
 class Reader {

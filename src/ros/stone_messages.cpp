@@ -28,53 +28,51 @@ ros::Time to_ros_time(std::int64_t ns) {
   return t;
 }
 
-geometry_msgs::Pose to_pose_msg(const RigidBodyState& state) {
+geometry_msgs::Pose to_pose_msg(const StateOutput& output) {
   // Position and quaternion directly (not via a rotation matrix) so nothing is rounded twice.
   geometry_msgs::Pose msg;
-  msg.position = tf2::toMsg(state.position_world);
-  msg.orientation = tf2::toMsg(state.orientation);
+  msg.position = tf2::toMsg(output.position_world);
+  msg.orientation = tf2::toMsg(output.orientation);
   return msg;
 }
 
-geometry_msgs::Twist to_world_twist_msg(const RigidBody& body) {
-  return to_twist_msg(body.state().velocity_world, body.angular_velocity_world());
+geometry_msgs::Twist to_world_twist_msg(const StateOutput& output) {
+  return to_twist_msg(output.velocity_world, output.angular_velocity_world);
 }
 
-geometry_msgs::Twist to_body_twist_msg(const RigidBody& body) {
-  return to_twist_msg(body.vector_world_to_body(body.state().velocity_world),
-                      body.angular_velocity_body());
+geometry_msgs::Twist to_body_twist_msg(const StateOutput& output) {
+  return to_twist_msg(output.velocity_body, output.angular_velocity_body);
 }
 
-geometry_msgs::TransformStamped to_transform_msg(const RigidBodyState& state,
-                                                 const ros::Time& stamp,
+geometry_msgs::TransformStamped to_transform_msg(const StateOutput& output, const ros::Time& stamp,
                                                  const std::string& world_frame,
                                                  const std::string& stone_frame) {
   geometry_msgs::TransformStamped msg;
   msg.header.stamp = stamp;
   msg.header.frame_id = world_frame;
   msg.child_frame_id = stone_frame;
-  tf2::toMsg(state.position_world, msg.transform.translation);
-  msg.transform.rotation = tf2::toMsg(state.orientation);
+  tf2::toMsg(output.position_world, msg.transform.translation);
+  msg.transform.rotation = tf2::toMsg(output.orientation);
   return msg;
 }
 
-geometry_msgs::PoseStamped to_pose_stamped_msg(const RigidBodyState& state, const ros::Time& stamp,
+geometry_msgs::PoseStamped to_pose_stamped_msg(const StateOutput& output, const ros::Time& stamp,
                                                const std::string& world_frame) {
   geometry_msgs::PoseStamped msg;
   msg.header.stamp = stamp;
   msg.header.frame_id = world_frame;
-  msg.pose = to_pose_msg(state);
+  msg.pose = to_pose_msg(output);
   return msg;
 }
 
-nav_msgs::Odometry to_odometry_msg(const RigidBody& body, const ros::Time& stamp,
+nav_msgs::Odometry to_odometry_msg(const StateOutput& output, const ros::Time& stamp,
                                    const std::string& world_frame, const std::string& stone_frame) {
   nav_msgs::Odometry msg;
   msg.header.stamp = stamp;
   msg.header.frame_id = world_frame;
   msg.child_frame_id = stone_frame;
-  msg.pose.pose = to_pose_msg(body.state());
-  msg.twist.twist = to_body_twist_msg(body);
+  msg.pose.pose = to_pose_msg(output);
+  msg.twist.twist = to_body_twist_msg(output);
   // Covariances stay zero: the simulated state is known exactly.
   return msg;
 }
@@ -98,39 +96,38 @@ StoneInfo to_info_msg(const StoneSimulation& sim) {
   msg.dt = sim.dt_s();
   msg.rate = c.rate_hz;
   msg.gravity = to_vector_msg(sim.setup().gravity_world);
-  const RigidBody initial(sim.setup().model, sim.initial_state());
-  msg.initial_pose = to_pose_msg(initial.state());
+  const StateOutput initial = state_output(sim.setup().model, sim.initial_state());
+  msg.initial_pose = to_pose_msg(initial);
   msg.initial_twist = to_world_twist_msg(initial);
   msg.max_angular_velocity = c.max_angular_velocity;
   msg.auto_reset_period = c.auto_reset_period_s;
   return msg;
 }
 
-StoneEvent to_event_msg(const SegmentEvent& event, const MotionModel& model,
-                        const std::string& world_frame) {
-  const RigidBody body(model, event.state);
+StoneEvent to_event_msg(const SegmentEvent& event, const std::string& world_frame) {
   StoneEvent msg;
   msg.header.stamp = to_ros_time(event.stamp_ns);
   msg.header.frame_id = world_frame;
   msg.segment = event.segment;
   msg.reason = event_reason_name(event.reason);
-  msg.pose = to_pose_msg(event.state);
-  msg.twist = to_world_twist_msg(body);
-  msg.angular_momentum = to_vector_msg(event.state.angular_momentum_world);
+  msg.pose = to_pose_msg(event.output);
+  msg.twist = to_world_twist_msg(event.output);
+  msg.angular_momentum = to_vector_msg(event.output.angular_momentum_world);
   return msg;
 }
 
-visualization_msgs::Marker to_marker_msg(const Stone& stone, const std::string& color,
-                                         const std::string& stone_frame) {
-  // Fine enough that the silhouette looks round at the default camera distance.
-  const TriangleMesh mesh = tessellate_lens(stone.shape, 64, 8);
+namespace {
+
+// The marker fields both forms share: frame-locked to the stone frame, stamp zero (rviz then
+// draws it at the latest transform of that frame), the stone's colour.
+visualization_msgs::Marker stone_marker_base(const std::string& color,
+                                             const std::string& stone_frame) {
   visualization_msgs::Marker msg;
   msg.header.frame_id = stone_frame;
   msg.header.stamp = ros::Time();  // zero: rviz uses the latest transform of the stone frame
   msg.frame_locked = true;
   msg.ns = "stone";
   msg.id = 0;
-  msg.type = visualization_msgs::Marker::TRIANGLE_LIST;
   msg.action = visualization_msgs::Marker::ADD;
   msg.pose.orientation.w = 1.0;
   msg.scale.x = msg.scale.y = msg.scale.z = 1.0;
@@ -140,10 +137,33 @@ visualization_msgs::Marker to_marker_msg(const Stone& stone, const std::string& 
   msg.color.g = black ? 0.06f : 0.93f;
   msg.color.b = black ? 0.07f : 0.90f;
   msg.color.a = 1.0f;
+  return msg;
+}
+
+}  // namespace
+
+TriangleMesh stone_display_mesh(const Stone& stone) {
+  // Fine enough that the silhouette looks round at the default camera distance.
+  return tessellate_lens(stone.shape, 64, 8);
+}
+
+visualization_msgs::Marker to_marker_msg(const Stone& stone, const std::string& color,
+                                         const std::string& stone_frame) {
+  const TriangleMesh mesh = stone_display_mesh(stone);
+  visualization_msgs::Marker msg = stone_marker_base(color, stone_frame);
+  msg.type = visualization_msgs::Marker::TRIANGLE_LIST;
   msg.points.reserve(mesh.triangles.size() * 3);
   for (const auto& triangle : mesh.triangles) {
     for (const int index : triangle) msg.points.push_back(tf2::toMsg(mesh.vertices[index]));
   }
+  return msg;
+}
+
+visualization_msgs::Marker to_mesh_marker_msg(const std::string& mesh_uri, const std::string& color,
+                                              const std::string& stone_frame) {
+  visualization_msgs::Marker msg = stone_marker_base(color, stone_frame);
+  msg.type = visualization_msgs::Marker::MESH_RESOURCE;
+  msg.mesh_resource = mesh_uri;
   return msg;
 }
 

@@ -2,12 +2,23 @@
 
 #include <tf2_eigen/tf2_eigen.h>
 
+#include <chrono>
+#include <cstdlib>
+#include <exception>
+#include <stdexcept>
+
+#include "virtual_go/common/formatting.h"
 #include "virtual_go/common/sim_time.h"
 #include "virtual_go/ros/param_reader.h"
 #include "virtual_go/ros/stone_messages.h"
+#include "virtual_go/sim/mesh_file.h"
 
 namespace virtual_go {
 namespace {
+
+constexpr double kMarkerPeriodS = 1.0;                 // wall time between republished markers
+constexpr std::int64_t kClockPatienceNs = 3000000000;  // ROS time still this long: say so
+constexpr double kClockWatchPeriodS = 0.5;             // wall time between looks at the clock
 
 Eigen::Vector3d to_eigen(const geometry_msgs::Vector3& v) {
   Eigen::Vector3d out;
@@ -25,23 +36,52 @@ Eigen::Vector4d to_xyzw(const geometry_msgs::Quaternion& q) {
   return Eigen::Vector4d(q.x, q.y, q.z, q.w);
 }
 
-// Runs a request; a rejection becomes success false with the reason, the state untouched.
+// Runs a request; a refusal becomes success false with the reason, the state untouched. The
+// reasons quote user strings cut short (quote_user_text), so neither the answer nor the log
+// line grows with the request.
 template <class Response, class Request>
 void answer(const char* service, const Request& request, Response& response) {
   try {
-    request();
+    response.message = request();
     response.success = true;
-    response.message = "applied at the next physics step";
-  } catch (const InvalidArgument& e) {
+  } catch (const std::exception& e) {  // InvalidArgument (a field), RequestRefused, any other
     response.success = false;
     response.message = e.what();
     ROS_WARN("stone_node: %s refused: %s", service, e.what());
   }
 }
 
+// Where ROS keeps its files: $ROS_HOME, else ~/.ros (rospkg's rule); "" when neither is known.
+std::string mesh_folder() {
+  const char* ros_home = std::getenv("ROS_HOME");
+  if (ros_home && *ros_home) return std::string(ros_home) + "/virtual_go";
+  const char* home = std::getenv("HOME");
+  if (home && *home) return std::string(home) + "/.ros/virtual_go";
+  return "";
+}
+
+// The MESH_RESOURCE marker and its STL file; the TRIANGLE_LIST when the file cannot be written.
+visualization_msgs::Marker make_marker(const StoneSimulation& sim) {
+  const StoneConfig& c = sim.config();
+  try {
+    const std::string folder = mesh_folder();
+    if (folder.empty()) throw std::runtime_error("neither ROS_HOME nor HOME is set");
+    const std::string stl = binary_stl(stone_display_mesh(sim.stone()));
+    const std::string path = write_mesh_file(folder, mesh_file_name(sim.stone().shape, stl), stl);
+    return to_mesh_marker_msg("file://" + path, c.color, c.stone_frame);
+  } catch (const std::exception& e) {
+    visualization_msgs::Marker marker = to_marker_msg(sim.stone(), c.color, c.stone_frame);
+    ROS_WARN(
+        "stone_node: no mesh file for ~marker (%s); publishing the lens as a TRIANGLE_LIST "
+        "instead: %u bytes every %g s",
+        e.what(), ros::serialization::serializationLength(marker), kMarkerPeriodS);
+    return marker;
+  }
+}
+
 StoneConfig read_config(const ros::NodeHandle& private_nh) {
   for (const std::string& name : unknown_parameters(private_nh)) {
-    ROS_WARN("ignoring unknown parameter ~%s (see stone_node --help)", name.c_str());
+    ROS_WARN("ignoring unknown parameter ~%s (see stone_node --help)", cut_user_text(name).c_str());
   }
   return read_stone_config(private_nh);
 }
@@ -49,7 +89,10 @@ StoneConfig read_config(const ros::NodeHandle& private_nh) {
 }  // namespace
 
 StoneNode::StoneNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh)
-    : nh_(nh), private_nh_(private_nh), sim_(read_config(private_nh)) {
+    : nh_(nh),
+      private_nh_(private_nh),
+      sim_(read_config(private_nh)),
+      clock_watch_(kClockPatienceNs) {
   const StoneConfig& c = sim_.config();
   if (c.rate_hz * c.dt_s > 1.0) {
     ROS_WARN(
@@ -64,7 +107,24 @@ StoneNode::StoneNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_n
   marker_pub_ = private_nh_.advertise<visualization_msgs::Marker>("marker", 1, true);
   info_pub_ = private_nh_.advertise<StoneInfo>("info", 1, true);
   events_pub_ = private_nh_.advertise<StoneEvent>("events", 10, true);
-  marker_pub_.publish(to_marker_msg(sim_.stone(), c.color, c.stone_frame));
+  // rviz drops a marker for good when it gets it before the first transform of the marker's
+  // frame: tf2's message filter holds it, and once the frame appears tf2 fails every pending
+  // request stamped more than its cache time (10 s) before the frame's latest data, which a
+  // stamp of 0 always is (BufferCore::testTransformableRequests; ros-visualization/rviz#494).
+  // Which arrives first depends on start order and on two separate connections, so no single
+  // message may matter: the marker is republished every kMarkerPeriodS, and a dropped one is
+  // replaced by the next. A TRIANGLE_LIST of the lens is 138 KB per message, so the marker is
+  // a MESH_RESOURCE naming a binary STL of the lens written here (233 bytes with the default
+  // ROS_HOME: 0.23 KB/s). Rejected: a marker in the fixed frame (it must carry the pose at
+  // every tick, duplicating /tf) and a robot model (rviz reads robot_description once, so it
+  // depends on start order too). The first one goes out right after the first transform.
+  marker_ = make_marker(sim_);
+  marker_timer_ =
+      nh_.createWallTimer(ros::WallDuration(kMarkerPeriodS), &StoneNode::on_marker_timer, this);
+  if (ros::Time::isSimTime()) {
+    clock_watch_timer_ = nh_.createWallTimer(ros::WallDuration(kClockWatchPeriodS),
+                                             &StoneNode::on_clock_watch, this);
+  }
 
   set_angular_velocity_srv_ = private_nh_.advertiseService(
       "set_angular_velocity", &StoneNode::on_set_angular_velocity, this);
@@ -79,40 +139,86 @@ StoneNode::StoneNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_n
 }
 
 void StoneNode::on_timer(const ros::TimerEvent&) {
+  // update() never throws; a failure comes back once in result.error, with its cause.
   const std::int64_t now_ns = static_cast<std::int64_t>(ros::Time::now().toNSec());
   const UpdateResult result = sim_.update(now_ns);
   if (!result.error.empty()) {
-    ROS_ERROR_THROTTLE(1.0, "stone_node: physics step failed, state held at %.9f s: %s",
-                       to_seconds(result.stamp_ns), result.error.c_str());
+    ROS_ERROR(
+        "stone_node: %s; the state is held and nothing is published until ~reset or "
+        "~set_state",
+        result.error.c_str());
   }
-  for (const SegmentEvent& event : result.events) {
-    if (event.reason == EventReason::time_jump) {
-      ROS_WARN("stone_node: ROS time jumped to %.9f s; the stone continues from there",
-               to_seconds(event.stamp_ns));
+  try {
+    for (const SegmentEvent& event : result.events) {
+      if (event.reason == EventReason::time_jump) {
+        ROS_WARN("stone_node: ROS time jumped to %.9f s; the stone continues from there",
+                 to_seconds(event.stamp_ns));
+      }
+      if (event.reason == EventReason::start) info_pub_.publish(to_info_msg(sim_));
     }
-    if (event.reason == EventReason::start) info_pub_.publish(to_info_msg(sim_));
+    publish_events(result);
+    // Only a state that advanced is published: each stamp appears once (no TF_REPEATED_DATA).
+    if (result.advanced) publish_state(result.stamp_ns);
+    if (result.advanced && !marker_sent_) {
+      marker_pub_.publish(marker_);
+      marker_sent_ = true;
+    }
+  } catch (const std::exception& e) {
+    // Publishing (ROS serialisation, a broken connection) must not end the node either.
+    ROS_ERROR_THROTTLE(10.0, "stone_node: publishing failed: %s", e.what());
   }
-  publish_events(result);
-  // Only a state that advanced is published: each stamp appears once (no TF_REPEATED_DATA).
-  if (result.advanced) publish_state(result.stamp_ns);
+}
+
+void StoneNode::on_marker_timer(const ros::WallTimerEvent&) {
+  if (marker_sent_) marker_pub_.publish(marker_);
+}
+
+void StoneNode::on_clock_watch(const ros::WallTimerEvent&) {
+  const std::int64_t wall_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(
+                                   std::chrono::steady_clock::now().time_since_epoch())
+                                   .count();
+  const std::int64_t ros_ns = static_cast<std::int64_t>(ros::Time::now().toNSec());
+  const double patience_s = to_seconds(clock_watch_.patience_ns());
+  switch (clock_watch_.observe(wall_ns, ros_ns)) {
+    case ClockWatch::Change::stalled:
+      if (ros_ns == 0) {
+        ROS_WARN(
+            "stone_node: waiting for /clock: use_sim_time is true and no /clock has arrived "
+            "for %g s, so nothing moves or is published. Play a bag with --clock or start a "
+            "simulator; for a live run set use_sim_time false (stone.launch does, unless "
+            "use_sim_time:=true)",
+            patience_s);
+      } else {
+        ROS_WARN(
+            "stone_node: waiting for /clock: ROS time (use_sim_time) has stood at %.3f s for "
+            "%g s, so nothing moves or is published until /clock moves on",
+            to_seconds(ros_ns), patience_s);
+      }
+      break;
+    case ClockWatch::Change::resumed:
+      ROS_INFO("stone_node: /clock moves again");
+      break;
+    case ClockWatch::Change::none:
+      break;
+  }
 }
 
 void StoneNode::publish_events(const UpdateResult& result) {
   for (const SegmentEvent& event : result.events) {
-    events_pub_.publish(to_event_msg(event, sim_.setup().model, sim_.config().world_frame));
+    events_pub_.publish(to_event_msg(event, sim_.config().world_frame));
   }
 }
 
 void StoneNode::publish_state(std::int64_t stamp_ns) {
   const StoneConfig& c = sim_.config();
-  const RigidBodyState& state = sim_.state();
+  const StateOutput& output = sim_.output();
   const ros::Time stamp = to_ros_time(stamp_ns);
-  tf_broadcaster_.sendTransform(to_transform_msg(state, stamp, c.world_frame, c.stone_frame));
+  tf_broadcaster_.sendTransform(to_transform_msg(output, stamp, c.world_frame, c.stone_frame));
   if (pose_pub_.getNumSubscribers() > 0) {
-    pose_pub_.publish(to_pose_stamped_msg(state, stamp, c.world_frame));
+    pose_pub_.publish(to_pose_stamped_msg(output, stamp, c.world_frame));
   }
   if (odom_pub_.getNumSubscribers() > 0) {
-    odom_pub_.publish(to_odometry_msg(sim_.body(), stamp, c.world_frame, c.stone_frame));
+    odom_pub_.publish(to_odometry_msg(output, stamp, c.world_frame, c.stone_frame));
   }
 }
 
@@ -120,14 +226,14 @@ bool StoneNode::on_set_angular_velocity(SetAngularVelocity::Request& request,
                                         SetAngularVelocity::Response& response) {
   answer(
       "set_angular_velocity",
-      [&] { sim_.set_angular_velocity(to_eigen(request.angular_velocity), request.frame); },
+      [&] { return sim_.set_angular_velocity(to_eigen(request.angular_velocity), request.frame); },
       response);
   return true;
 }
 
 bool StoneNode::on_reset(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response) {
   answer(
-      "reset", [&] { sim_.reset(); }, response);
+      "reset", [&] { return sim_.reset(); }, response);
   return true;
 }
 
@@ -135,8 +241,8 @@ bool StoneNode::on_set_state(SetState::Request& request, SetState::Response& res
   answer(
       "set_state",
       [&] {
-        sim_.set_state(to_eigen(request.pose.position), to_xyzw(request.pose.orientation),
-                       to_eigen(request.twist.linear), to_eigen(request.twist.angular));
+        return sim_.set_state(to_eigen(request.pose.position), to_xyzw(request.pose.orientation),
+                              to_eigen(request.twist.linear), to_eigen(request.twist.angular));
       },
       response);
   return true;

@@ -46,16 +46,19 @@ std::string stone_node_help() {
   std::ostringstream out;
   out << R"(usage: rosrun virtual_go stone_node [__name:=stone] [_param:=value ...]
        roslaunch virtual_go stone.launch [rviz:=true] [record:=true] [bag:=FILE] [config:=YAML]
+                                         [use_sim_time:=true]
+       roslaunch virtual_go replay.launch [bag:=FILE] [rviz:=true]
 
 Simulates a Go stone (a biconvex lens) as a rigid body on a timer on ROS time (use_sim_time
-and /clock work) with a fixed physics step, and publishes its pose. SI units (REP 103).
-Needs a ROS master; --help does not.
+and /clock work; it warns when ROS time stands still for 3 s) with a fixed physics step, and
+publishes its pose. SI units (REP 103). Needs a ROS master; --help does not.
 
 Published (private names, ~ = the node's name, e.g. /stone):
   /tf                  world_frame -> stone_frame, stamped with the simulated time of the state
   ~pose                geometry_msgs/PoseStamped, world frame
   ~odom                nav_msgs/Odometry: pose in the world frame, twist in the stone frame
-  ~marker              visualization_msgs/Marker (latched): the lens as a TRIANGLE_LIST
+  ~marker              visualization_msgs/Marker (latched, every second): the lens as a
+                       MESH_RESOURCE, an STL file in $ROS_HOME/virtual_go (~/.ros/virtual_go)
   ~info                virtual_go/StoneInfo (latched): stone, model, integrator, dt, initial state
   ~events              virtual_go/StoneEvent (latched): start of each motion segment
                        ()"
@@ -66,6 +69,11 @@ Services (changes take effect at the next physics step, which starts a new segme
                          "world" (default) or "stone"; rigid_body sets L = I w
   ~reset                 std_srvs/Trigger: back to the initial state (ROS time keeps running)
   ~set_state             virtual_go/SetState: pose and twist in the world frame
+  A request beyond the bounds below (~max_distance, ~max_speed, ~max_angular_velocity) is
+  refused with the field, the value and the limit. So are requests beyond the )"
+      << kMaxPendingRequests << R"( that
+  may wait for a physics step (none comes while ROS time stands still), and
+  ~set_angular_velocity while a failed step holds the state (~reset or ~set_state replace it).
 
 Parameters (name, unit, meaning; default):
 )";

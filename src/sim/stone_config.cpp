@@ -11,6 +11,9 @@
 namespace virtual_go {
 namespace {
 
+// The smallest value of a bound that has no other floor: positive, and normal.
+constexpr double kMinBound = 1e-300;
+
 [[noreturn]] void fail(const std::string& param, const std::string& problem) {
   throw ConfigError("~" + param, "~" + param + ": " + problem);
 }
@@ -28,7 +31,29 @@ void require_finite_param(const std::string& param, const Eigen::Vector3d& value
 void check_frame(const std::string& param, const std::string& frame) {
   if (frame.empty()) fail(param, "must not be empty");
   // tf2 refuses frame ids with a leading slash.
-  if (frame[0] == '/') fail(param, "must not start with '/', got '" + frame + "'");
+  if (frame[0] == '/') fail(param, "must not start with '/', got " + quote_user_text(frame));
+}
+
+// A plausibility bound: within [lowest, highest] (the caps of stone_config.h).
+void check_bound(const std::string& param, double value, double lowest, double highest,
+                 const std::string& unit) {
+  if (!(value >= lowest && value <= highest)) {  // also refuses NaN
+    const std::string range =
+        lowest == kMinBound ? "positive and at most " + format_limit(highest)
+                            : "between " + format_limit(lowest) + " and " + format_limit(highest);
+    fail(param, "must be " + range + " " + unit + ", got " + format_value(value));
+  }
+}
+
+// value within [~min_<name>, ~max_<name>].
+void check_range(const std::string& param, double value, const std::string& what,
+                 const std::string& bound_name, double lowest, double highest,
+                 const std::string& unit) {
+  if (!(value >= lowest && value <= highest)) {
+    fail(param, what + " must be between ~min_" + bound_name + " " + format_value(lowest) +
+                    " and ~max_" + bound_name + " " + format_value(highest) + " " + unit +
+                    ", got " + format_value(value) + " " + unit);
+  }
 }
 
 // The parameter behind each StoneSpec member, as make_stone's InvalidArgument::field() names it.
@@ -83,7 +108,34 @@ CheckedConfig check_config(const StoneConfig& c) {
   const MotionModelKind model = named("model", [&] { return motion_model_from_name(c.model); });
   const IntegratorInfo* integrator =
       named("integrator", [&] { return &integrators().at(c.integrator); });
+  // The bounds first: the checks below use them.
+  check_bound("max_angular_velocity", c.max_angular_velocity, kMinBound, kMaxAngularVelocityCap,
+              "rad/s");
+  check_bound("max_speed", c.max_speed, kMinBound, kMaxSpeedCap, "m/s");
+  check_bound("max_distance", c.max_distance, kMinBound, kMaxDistanceCap, "m");
+  check_bound("max_gravity", c.max_gravity, kMinBound, kMaxGravityCap, "m/s^2");
+  check_bound("min_mass", c.min_mass, kMinMassCap, kMaxMassCap, "kg");
+  check_bound("max_mass", c.max_mass, kMinMassCap, kMaxMassCap, "kg");
+  if (!(c.min_mass < c.max_mass)) {
+    fail("max_mass", "must be more than ~min_mass " + format_value(c.min_mass) + " kg, got " +
+                         format_value(c.max_mass) + " kg");
+  }
+  check_bound("min_width", c.min_width, kMinWidthCap, kMaxWidthCap, "m");
+  check_bound("max_width", c.max_width, kMinWidthCap, kMaxWidthCap, "m");
+  if (!(c.min_width < c.max_width)) {
+    fail("max_width", "must be more than ~min_width " + format_value(c.min_width) + " m, got " +
+                          format_value(c.max_width) + " m");
+  }
+
   require_finite_param("gravity", c.gravity_world);
+  if (!(norm_without_overflow(c.gravity_world) <= c.max_gravity)) {
+    fail("gravity", "|g| " + norm_text(c.gravity_world) + " m/s^2 exceeds ~max_gravity " +
+                        format_value(c.max_gravity) + " m/s^2");
+  }
+  check_range("stone/width", c.stone.width, "the width", "width", c.min_width, c.max_width, "m");
+  if (c.stone.mass) {
+    check_range("stone/mass", *c.stone.mass, "the mass", "mass", c.min_mass, c.max_mass, "kg");
+  }
   // make_stone checks every field of the spec and names the one to blame; the message names
   // core fields, the parameter comes from field().
   std::optional<Stone> stone;
@@ -92,13 +144,18 @@ CheckedConfig check_config(const StoneConfig& c) {
   } catch (const InvalidArgument& e) {
     fail(stone_parameter(e.field()), e.what());
   }
+  // A mass from the size and a density: blame what set it (the density, else the dimensions).
+  const std::string mass_param = c.stone.density  ? "stone/density"
+                                 : c.stone.height ? "stone/height"
+                                                  : "stone/width";
+  check_range(mass_param, stone->mass_properties.mass(),
+              "the stone's mass (from its size and density)", "mass", c.min_mass, c.max_mass, "kg");
   const std::vector<std::string>& colors = stone_colors();
   if (std::find(colors.begin(), colors.end(), c.color) == colors.end()) {
     std::vector<std::string> quoted;
     for (const std::string& color : colors) quoted.push_back("'" + color + "'");
-    fail("stone/color", "must be " + join(quoted, " or ") + ", got '" + c.color + "'");
+    fail("stone/color", "must be " + join(quoted, " or ") + ", got " + quote_user_text(c.color));
   }
-  require_positive_param("max_angular_velocity", c.max_angular_velocity, "rad/s");
   if (!std::isfinite(c.auto_reset_period_s) || c.auto_reset_period_s < 0.0 ||
       c.auto_reset_period_s > kMaxAutoResetPeriodS) {
     fail("auto_reset_period", "must be between 0 (never) and " +
@@ -115,23 +172,26 @@ CheckedConfig check_config(const StoneConfig& c) {
   check_frame("world_frame", c.world_frame);
   check_frame("stone_frame", c.stone_frame);
   if (c.world_frame == c.stone_frame) {
-    fail("stone_frame", "must differ from ~world_frame, both are '" + c.world_frame + "'");
+    fail("stone_frame",
+         "must differ from ~world_frame, both are " + quote_user_text(c.world_frame));
   }
 
   const MotionSetup setup{MotionModel(model, stone->mass_properties), c.gravity_world};
   const double dt_s = to_seconds(dt_ns);
-  const AngularVelocityLimit limit{c.max_angular_velocity, integrator->max_rotation_per_step, dt_s,
-                                   integrator->name};
+  const RequestLimits limits{
+      c.max_distance, c.max_speed,     c.max_angular_velocity, integrator->max_rotation_per_step,
+      dt_s,           integrator->name};
   RigidBodyState initial;
   try {
-    initial = state_from_request({"~initial/position", "~initial/orientation", "~initial/velocity",
-                                  "~initial/angular_velocity"},
-                                 setup.model, c.initial_position_world, c.initial_orientation_xyzw,
-                                 c.initial_velocity_world, c.initial_angular_velocity_world, limit);
+    initial =
+        state_from_request({"~initial/position", "~initial/orientation", "~initial/velocity",
+                            "~initial/angular_velocity"},
+                           setup.model, c.initial_position_world, c.initial_orientation_xyzw,
+                           c.initial_velocity_world, c.initial_angular_velocity_world, limits);
   } catch (const InvalidArgument& e) {
     throw ConfigError(e.field(), e.what());
   }
-  return CheckedConfig{c, *stone, setup, integrator, dt_ns, dt_s, auto_reset_ns, limit, initial};
+  return CheckedConfig{c, *stone, setup, integrator, dt_ns, dt_s, auto_reset_ns, limits, initial};
 }
 
 void validate_config(const StoneConfig& config) { check_config(config); }

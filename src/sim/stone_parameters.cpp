@@ -77,8 +77,32 @@ std::vector<BoundParameter> bind_parameters(StoneConfig& c) {
       {{"initial/velocity", "m/s", "", "[x, y, z], world frame"}, &c.initial_velocity_world},
       {{"initial/angular_velocity", "rad/s", "", "[x, y, z], world frame"},
        &c.initial_angular_velocity_world},
-      {{"max_angular_velocity", "rad/s", "", "larger requests (and initial values) are refused"},
+      // Plausibility bounds: a request or initial value beyond them is refused.
+      {{"max_angular_velocity", "rad/s", "",
+        "largest angular speed of a request or initial value; at most " +
+            format_limit(kMaxAngularVelocityCap)},
        &c.max_angular_velocity},
+      {{"max_speed", "m/s", "",
+        "largest speed of a request or initial value; at most " + format_limit(kMaxSpeedCap) +
+            " (light)"},
+       &c.max_speed},
+      {{"max_distance", "m", "",
+        "largest distance from the world origin of a requested or initial position; at most " +
+            format_limit(kMaxDistanceCap)},
+       &c.max_distance},
+      {{"max_gravity", "m/s^2", "",
+        "largest magnitude of ~gravity; at most " + format_limit(kMaxGravityCap)},
+       &c.max_gravity},
+      {{"min_mass", "kg", "",
+        "smallest stone mass, given or from size and density; at least " +
+            format_limit(kMinMassCap)},
+       &c.min_mass},
+      {{"max_mass", "kg", "", "largest stone mass; at most " + format_limit(kMaxMassCap)},
+       &c.max_mass},
+      {{"min_width", "m", "", "smallest ~stone/width; at least " + format_limit(kMinWidthCap)},
+       &c.min_width},
+      {{"max_width", "m", "", "largest ~stone/width; at most " + format_limit(kMaxWidthCap)},
+       &c.max_width},
       {{"auto_reset_period", "s", "",
         "reset when a segment is this old; 0 = never, else longer than ~dt"},
        &c.auto_reset_period_s},

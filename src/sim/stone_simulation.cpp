@@ -6,12 +6,15 @@
 
 #include "virtual_go/common/sim_time.h"
 #include "virtual_go/flight/integrator_registry.h"
+#include "virtual_go/geometry/rotation.h"
 
 namespace virtual_go {
 namespace {
 
 // 1 s behind ROS time: skip rather than catch up.
 constexpr std::int64_t kMaxLagNs = kNanosecondsPerSecond;
+
+constexpr char kApplied[] = "applied at the next physics step";
 
 }  // namespace
 
@@ -22,32 +25,65 @@ StoneSimulation::StoneSimulation(CheckedConfig checked)
     : checked_(std::move(checked)),
       integrator_(checked_.integrator->make(*checked_.integrator, checked_.setup)),
       clock_(checked_.dt_ns, std::max(kMaxLagNs, 2 * checked_.dt_ns)),
-      state_(checked_.initial_state) {}
+      state_(checked_.initial_state),
+      output_(state_output(checked_.setup.model, checked_.initial_state)) {}
 
-void StoneSimulation::reset() {
-  pending_.push_back({EventReason::reset, checked_.initial_state, {}, {}});
+std::string StoneSimulation::answer() {
+  if (failure_reported_) return kApplied;
+  failure_reported_ = true;
+  return std::string(kApplied) + "; note: " + failure_ +
+         (held_ ? " (the state is held until a reset or set_state replaces it)" : "");
 }
 
-void StoneSimulation::set_angular_velocity(const Eigen::Vector3d& omega, const std::string& frame) {
+void StoneSimulation::enqueue(Change change) {
+  // Without steps (ROS time standing still, e.g. use_sim_time without /clock) nothing takes
+  // requests off the queue: bound it rather than let a caller fill the memory.
+  if (pending_.size() >= kMaxPendingRequests) {
+    throw RequestRefused("refused: " + std::to_string(pending_.size()) +
+                         " requests already wait for the next physics step (the limit): ROS "
+                         "time has not advanced by a step since they came (under "
+                         "use_sim_time, is /clock published?)");
+  }
+  pending_.push_back(std::move(change));
+}
+
+std::string StoneSimulation::reset() {
+  enqueue({EventReason::reset, checked_.initial_state, {}, {}});
+  return answer();
+}
+
+std::string StoneSimulation::set_angular_velocity(const Eigen::Vector3d& omega,
+                                                  const std::string& frame) {
   const StoneConfig& c = checked_.config;
   const RequestFrame f = request_frame("frame", frame, c.world_frame, c.stone_frame);
-  check_angular_velocity("angular_velocity", omega, checked_.angular_velocity_limit);
-  pending_.push_back({EventReason::set_angular_velocity, {}, omega, f});
+  check_angular_velocity("angular_velocity", omega, checked_.limits);
+  if (held_ && !replacement_due()) {
+    // It would only change a state that cannot move: say so instead of "applied".
+    failure_reported_ = true;
+    throw RequestRefused("refused: the state is held since " + failure_ +
+                         "; ~reset or ~set_state replaces it, after which angular velocity "
+                         "requests apply again");
+  }
+  enqueue({EventReason::set_angular_velocity, {}, omega, f});
+  return answer();
 }
 
-void StoneSimulation::set_state(const Eigen::Vector3d& position_world,
-                                const Eigen::Vector4d& orientation_xyzw,
-                                const Eigen::Vector3d& velocity_world,
-                                const Eigen::Vector3d& angular_velocity_world) {
-  const RigidBodyState s =
-      state_from_request({"pose.position", "pose.orientation", "twist.linear", "twist.angular"},
-                         checked_.setup.model, position_world, orientation_xyzw, velocity_world,
-                         angular_velocity_world, checked_.angular_velocity_limit);
-  pending_.push_back({EventReason::set_state, s, {}, {}});
+std::string StoneSimulation::set_state(const Eigen::Vector3d& position_world,
+                                       const Eigen::Vector4d& orientation_xyzw,
+                                       const Eigen::Vector3d& velocity_world,
+                                       const Eigen::Vector3d& angular_velocity_world) {
+  const RigidBodyState s = state_from_request(
+      {"pose.position", "pose.orientation", "twist.linear", "twist.angular"}, checked_.setup.model,
+      position_world, orientation_xyzw, velocity_world, angular_velocity_world, checked_.limits);
+  enqueue({EventReason::set_state, s, {}, {}});
+  return answer();
 }
 
 void StoneSimulation::replace_state(const RigidBodyState& state) {
+  StateOutput output = state_output(checked_.setup.model, state);  // throws: nothing changed
   state_ = state;
+  output_ = output;
+  output_stale_ = false;
   flight_cache_.invalidate();  // the integrator must not continue the old motion
 }
 
@@ -55,15 +91,53 @@ void StoneSimulation::begin_segment(EventReason reason, std::int64_t stamp_ns,
                                     UpdateResult& result) {
   if (reason != EventReason::start) ++segment_;
   segment_start_ns_ = stamp_ns;
-  result.events.push_back({stamp_ns, segment_, reason, state_});
+  result.events.push_back({stamp_ns, segment_, reason, state_, output_});
 }
 
-UpdateResult StoneSimulation::update(std::int64_t now_ns) {
+bool StoneSimulation::replacement_due() const {
+  const std::int64_t auto_reset_ns = checked_.auto_reset_ns;
+  if (auto_reset_ns > 0 && clock_.next_time_ns() - segment_start_ns_ >= auto_reset_ns) {
+    return true;
+  }
+  return std::any_of(pending_.begin(), pending_.end(),
+                     [](const Change& change) { return change.replaces_state(); });
+}
+
+void StoneSimulation::hold(const std::string& cause, UpdateResult& result) {
+  std::string failure =
+      "the physics step after " + stamp_text(clock_.time_ns()) + " s failed: " + cause;
+  if (!pending_.empty()) {
+    failure +=
+        " (" + std::to_string(pending_.size()) + " request(s) due at that step were not applied)";
+    pending_.clear();
+  }
+  held_ = true;
+  failure_ = failure;
+  failure_reported_ = false;
+  flight_cache_.invalidate();  // it may have moved on with the step that failed
+  result.error = failure;
+  if (!result.advanced) result.stamp_ns = clock_.time_ns();
+}
+
+UpdateResult StoneSimulation::update(std::int64_t now_ns) noexcept {
   UpdateResult result;
+  // Whatever fails (a step, a change, an output that would not be finite) holds the state:
+  // nothing leaves this function, so no input can stop the node.
+  try {
+    advance_to(now_ns, result);
+  } catch (const std::exception& e) {
+    hold(e.what(), result);
+  } catch (...) {
+    hold("an unknown exception", result);
+  }
+  return result;
+}
+
+void StoneSimulation::advance_to(std::int64_t now_ns, UpdateResult& result) {
   const SimClock::Plan plan = clock_.plan(now_ns);
   switch (plan.action) {
     case SimClock::Action::wait:
-      return result;
+      return;
     case SimClock::Action::start:
       clock_.restart(now_ns);
       start_ns_ = now_ns;
@@ -77,65 +151,92 @@ UpdateResult StoneSimulation::update(std::int64_t now_ns) {
       clock_.restart(now_ns);
       // A held state is only re-timed (so a reset takes effect near ROS time): announcing or
       // publishing it would present the stale state as new.
-      if (held_) return result;
+      if (held_) return;
       begin_segment(EventReason::time_jump, now_ns, result);
       break;
     case SimClock::Action::advance:
       for (std::int64_t i = 0; i < plan.steps; ++i) {
+        if (held_ && !replacement_due()) {
+          // Nothing can move the held state; the clock keeps to ROS time so that a reset
+          // takes effect at the next grid time, and nothing is published.
+          clock_.step();
+          continue;
+        }
         try {
           step(result);
-        } catch (const IntegrationError& e) {
-          result.error = e.what();
-          held_ = true;
-          break;
+        } catch (const std::exception& e) {
+          hold(e.what(), result);
+          continue;
         }
         held_ = false;
         result.advanced = true;
+        result.stamp_ns = clock_.time_ns();
       }
-      result.stamp_ns = clock_.time_ns();
-      return result;
+      // What messages show of the state to publish: once per update, not at every step (the
+      // integrator refuses a non-finite state at every step; the derived numbers are checked
+      // here, before anything is published).
+      if (result.advanced && output_stale_) {
+        try {
+          output_ = state_output(checked_.setup.model, state_);
+          output_stale_ = false;
+        } catch (const std::exception& e) {
+          result.advanced = false;
+          hold(e.what(), result);
+        }
+      }
+      return;
   }
   result.advanced = true;
   result.stamp_ns = clock_.time_ns();
-  return result;
 }
 
 void StoneSimulation::step(UpdateResult& result) {
   const std::int64_t next_ns = clock_.next_time_ns();
   const std::int64_t auto_reset_ns = checked_.auto_reset_ns;
   const bool auto_reset = auto_reset_ns > 0 && next_ns - segment_start_ns_ >= auto_reset_ns;
-  RigidBodyState next = state_;
+  const MotionModel& model = checked_.setup.model;
   // A change that replaces the whole state (any pending one: all apply at this step) makes
   // integrating this step pointless, and lets a reset recover from a state the integrator
   // cannot handle.
   const bool replaced =
       auto_reset || std::any_of(pending_.begin(), pending_.end(),
                                 [](const Change& change) { return change.replaces_state(); });
-  // Throws with nothing changed (the cache then starts afresh at the next step).
+  // Everything below works on a copy and may throw; the simulation changes only at the end.
+  RigidBodyState next = state_;
   if (!replaced) integrator_->advance(next, checked_.dt_s, flight_cache_);
-
-  clock_.step();
-  state_ = next;
   // Everything due at this step applies in order and starts one segment, named after the last
   // change: an event each would make segments of zero length at the same stamp.
   std::optional<EventReason> reason;
   if (auto_reset) {
-    replace_state(checked_.initial_state);
+    next = checked_.initial_state;
     reason = EventReason::auto_reset;
   }
   for (const Change& change : pending_) {
     if (change.replaces_state()) {
-      replace_state(change.state);
+      next = change.state;
     } else {
-      const Eigen::Vector3d omega_world = change.frame == RequestFrame::body
-                                              ? Eigen::Vector3d(state_.orientation * change.omega)
-                                              : change.omega;
-      replace_state(with_angular_velocity_world(checked_.setup.model, state_, omega_world));
+      const Eigen::Vector3d omega_world =
+          change.frame == RequestFrame::body
+              ? rotate_without_overflow(next.orientation, change.omega)
+              : change.omega;
+      next = with_angular_velocity_world(model, next, omega_world);
     }
     reason = change.reason;
   }
+  // A new segment's event carries the outputs of its first state: checked before anything
+  // changes. Other steps leave them to the end of update().
+  std::optional<StateOutput> output;
+  if (reason) output = state_output(model, next);
+
+  clock_.step();
+  state_ = next;
+  output_stale_ = !output;
+  if (output) output_ = *output;
   pending_.clear();
-  if (reason) begin_segment(*reason, next_ns, result);
+  if (reason) {
+    flight_cache_.invalidate();  // the integrator must not continue the old motion
+    begin_segment(*reason, next_ns, result);
+  }
 }
 
 }  // namespace virtual_go

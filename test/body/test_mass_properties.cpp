@@ -185,3 +185,28 @@ TEST(MassProperties, InertiaMatricesAreDiagonalAndInverse) {
   EXPECT_EQ(mp.inertia_body()(0, 1), 0.0);
   EXPECT_FALSE(mp.is_axisymmetric());
 }
+
+// issue 8: a mass whose moments were subnormal was accepted, and w = L / I then lost digits
+// (29.875 for 30). Subnormal masses and moments are refused, naming the moment.
+TEST(MassProperties, SubnormalMomentsAreRefused) {
+  const vg::LensShape shape(0.022, 0.0092);
+  EXPECT_NO_THROW(vg::MassProperties::of_lens_with_mass(shape, 1e-290));
+  try {
+    vg::MassProperties::of_lens_with_mass(shape, 1e-305);  // moments about 3e-310 kg m^2
+    ADD_FAILURE() << "subnormal moments accepted";
+  } catch (const vg::InvalidArgument& e) {
+    EXPECT_EQ(e.field().rfind("principal moment", 0), 0u) << e.what();
+    EXPECT_NE(std::string(e.what()).find("below the smallest normal double"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_THROW(vg::MassProperties(1e-310, Eigen::Vector3d(1, 1, 1)), vg::InvalidArgument);
+  // make_stone blames the mass that set them.
+  vg::StoneSpec spec;
+  spec.mass = 1e-305;
+  try {
+    vg::make_stone(spec);
+    ADD_FAILURE() << "accepted";
+  } catch (const vg::InvalidArgument& e) {
+    EXPECT_EQ(e.field(), "mass") << e.what();
+  }
+}

@@ -2,6 +2,8 @@
 // below where cos-based formulas lose accuracy) and the geodesic orientation error.
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include "support/physics_reference.h"
 #include "virtual_go/geometry/rotation.h"
 
@@ -44,4 +46,21 @@ TEST(Rotation, OrientationErrorIsTheGeodesicAngle) {
   const vgtest::Quat far = vgtest::qmul(p, vgtest::axis_angle(4.0 * axis));
   EXPECT_NEAR(vg::orientation_error(vgtest::to_eigen(p), vgtest::to_eigen(far)), 2 * M_PI - 4.0,
               1e-14);
+}
+
+// q * v without intermediate overflow (issue 8: ~odom's twist for |v| > 9e307): against the
+// rotation matrix on the scaled vector, and equal to the plain product where that is finite.
+TEST(Rotation, RotateWithoutOverflowMatchesTheMatrixAtAnyScale) {
+  const Eigen::Quaterniond q = Eigen::Quaterniond(0.3, -0.9, 0.2, 0.25).normalized();
+  const Eigen::Vector3d direction = Eigen::Vector3d(0.2, 1.0, -0.4).normalized();
+  for (const double length : {1e-300, 1.0, 1e150, 1e200, 9e307, 1.7e308}) {
+    const Eigen::Vector3d v = length * direction;
+    const Eigen::Vector3d r = vg::rotate_without_overflow(q, v);
+    ASSERT_TRUE(r.allFinite()) << length;
+    const Eigen::Vector3d expected = (q.toRotationMatrix() * direction) * length;
+    EXPECT_LT(((r - expected) / length).norm(), 1e-15) << length;
+    if (length <= 1e150) EXPECT_EQ(r, Eigen::Vector3d(q * v)) << "the plain product below 1e150";
+  }
+  const double inf = std::numeric_limits<double>::infinity();
+  EXPECT_FALSE(vg::rotate_without_overflow(q, Eigen::Vector3d(inf, 0, 0)).allFinite());
 }

@@ -1,11 +1,13 @@
 // Start-up parameters: each invalid one makes stone_node exit non-zero with a FATAL message
 // naming it; --help needs no master. Runs the real binary (path from CMake).
 #include <gtest/gtest.h>
+#include <ros/ros.h>
 #include <sys/wait.h>
 
 #include <array>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 #ifndef STONE_NODE_PATH
 #error "STONE_NODE_PATH must name the stone_node binary"
@@ -53,6 +55,13 @@ TEST(StoneNodeParams, InvalidParametersAreFatalAndNamed) {
       {"orientation", "_initial/orientation:=[0.0,0.0,0.0,0.0]", "~initial/orientation"},
       {"omega", "_initial/angular_velocity:=[0.0,0.0,1.0e6]", "~initial/angular_velocity"},
       {"type", "_dt:=fast", "~dt: must be a number"},
+      // issue 8: blamed on ~stone/size.
+      {"width_small", "_stone/width:=0.005",
+       "~stone/width: stone width 0.005 m must be more than the height 0.0092 m"},
+      // issue 8: accepted, with subnormal moments (omega_z 29.875 published for 30).
+      {"mass_subnormal", "_stone/mass:=1.0e-303",
+       "~stone/mass: the mass must be between ~min_mass 1e-06 and ~max_mass 1000 kg"},
+      {"bound_beyond_cap", "_max_speed:=1.0e+9", "~max_speed: must be positive and at most"},
       // A typo is warned about (before the FATAL that ends this run).
       {"unknown", "_rat:=5.0 _rate:=-5.0", "ignoring unknown parameter ~rat (see"},
   };
@@ -62,6 +71,45 @@ TEST(StoneNodeParams, InvalidParametersAreFatalAndNamed) {
     EXPECT_NE(out.output.find("FATAL"), std::string::npos) << c.name << ":\n" << out.output;
     EXPECT_NE(out.output.find(c.expected), std::string::npos)
         << c.name << ": expected '" << c.expected << "' in:\n"
+        << out.output;
+  }
+}
+
+// issue 8: ~initial/velocity [1.7564270946e+308, 0, 0] and ~gravity [0, 0, -8.574e307] were
+// accepted, and 1.024 s later the node exited with a FATAL that named no parameter ("time
+// 1.024 s is too large: the state overflows"). They are refused at start-up, naming the
+// parameter, the value and the limit. (Lists cannot be given as _param:= arguments, which
+// roscpp reads as strings: they are set on the master, under the node's name.)
+TEST(StoneNodeParams, AbsurdVectorsAreFatalWithTheirLimit) {
+  struct Case {
+    const char* node;
+    const char* parameter;
+    std::vector<double> value;
+    const char* expected;
+  };
+  const Case cases[] = {
+      {"bad_velocity_absurd",
+       "initial/velocity",
+       {1.7564270946e+308, 0.0, 0.0},
+       "~initial/velocity: |v| = 1.7564270946e+308 m/s exceeds ~max_speed 1000 m/s"},
+      {"bad_gravity_absurd",
+       "gravity",
+       {0.0, 0.0, -8.574e307},
+       "~gravity: |g| = 8.574e+307 m/s^2 exceeds ~max_gravity 1000 m/s^2"},
+      {"bad_position_absurd",
+       "initial/position",
+       {0.0, 1e300, 0.0},
+       "~initial/position: distance from the world origin = 1e+300 m exceeds ~max_distance"},
+  };
+  for (const Case& c : cases) {
+    const std::string name = std::string("/") + c.node + "/" + c.parameter;
+    ros::param::set(name, c.value);
+    const Outcome out = run(std::string("__name:=") + c.node);
+    ros::param::del(name);
+    EXPECT_NE(out.exit_code, 0) << c.node << ":\n" << out.output;
+    EXPECT_NE(out.output.find("FATAL"), std::string::npos) << c.node << ":\n" << out.output;
+    EXPECT_NE(out.output.find(c.expected), std::string::npos)
+        << c.node << ": expected '" << c.expected << "' in:\n"
         << out.output;
   }
 }

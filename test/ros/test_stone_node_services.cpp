@@ -1,6 +1,7 @@
 // Each service, observed on tf afterwards; bad input refused with the node unchanged and alive.
 // The node starts at rest without gravity, exact integrator, max_angular_velocity 100 rad/s.
 #include <gtest/gtest.h>
+#include <rosgraph_msgs/Log.h>
 #include <std_srvs/Trigger.h>
 
 #include <cmath>
@@ -215,4 +216,103 @@ TEST(StoneNodeServices, BadInputIsRefusedAndChangesNothing) {
   std_srvs::Trigger reset;
   ASSERT_TRUE(o.call("reset", reset));
   EXPECT_TRUE(reset.response.success);
+}
+
+// issue 8, through a live node: inputs that stopped or silenced it.
+// - set_state with velocity x = 1.7564270946e+308 was accepted, and 1.024 s later the node
+//   exited with a FATAL (this rostest's node is required: its death would end the test);
+// - states near the largest double silenced it while set_angular_velocity kept answering
+//   "applied";
+// - components above 1.3e154 were reported as |w| = inf;
+// - a quaternion with a norm above the largest double was refused naming an internal field;
+// - a 1 MB frame name was logged in full.
+TEST(StoneNodeServices, AbsurdInputIsRefusedWithItsLimitAndTheNodeCarriesOn) {
+  NodeObserver o;
+  ASSERT_TRUE(o.wait_for_start());
+  std::vector<rosgraph_msgs::Log> log;
+  ros::NodeHandle nh;
+  const ros::Subscriber rosout = nh.subscribe<rosgraph_msgs::Log>(
+      "/rosout", 1000, [&log](const rosgraph_msgs::Log::ConstPtr& m) {
+        if (m->name == "/stone") log.push_back(*m);
+      });
+  // /rosout is not latched: only what the node logs once the connection stands arrives here.
+  // A refused probe, repeated until its log line is seen, shows that it does.
+  const auto probe_logged = [&] {
+    return std::any_of(log.begin(), log.end(), [](const rosgraph_msgs::Log& m) {
+      return m.msg.find("'probe'") != std::string::npos;
+    });
+  };
+  for (int attempt = 0; attempt < 50 && !probe_logged(); ++attempt) {
+    auto probe = angular_velocity(0, 0, 1, "probe");
+    ASSERT_TRUE(o.call("set_angular_velocity", probe));
+    o.wait_until(probe_logged, 0.2);
+  }
+  ASSERT_TRUE(probe_logged()) << "no log line of the node arrived on /rosout";
+  log.clear();
+
+  auto fast = state(0, 0, 0.02, 0, 0, 0, 1);
+  fast.request.twist.linear.x = 1.7564270946e+308;
+  ASSERT_TRUE(o.call("set_state", fast));
+  EXPECT_FALSE(fast.response.success);
+  EXPECT_EQ(fast.response.message,
+            "twist.linear: |v| = 1.7564270946e+308 m/s exceeds ~max_speed 1000 m/s");
+
+  auto far = state(1.7e308, 0, 0, 0, 0, 0, 1);
+  ASSERT_TRUE(o.call("set_state", far));
+  EXPECT_FALSE(far.response.success);
+  EXPECT_EQ(far.response.message.rfind("pose.position: distance from the world origin = 1.7e+308 m "
+                                       "exceeds ~max_distance 1000 m",
+                                       0),
+            0u)
+      << far.response.message;
+
+  auto spin = angular_velocity(2e154, 0, 0);
+  ASSERT_TRUE(o.call("set_angular_velocity", spin));
+  EXPECT_FALSE(spin.response.success);
+  EXPECT_EQ(spin.response.message,
+            "angular_velocity: |w| = 2e+154 rad/s exceeds ~max_angular_velocity 100 rad/s");
+
+  const std::string long_frame(1 << 20, 'f');
+  auto framed = angular_velocity(0, 0, 1, long_frame);
+  ASSERT_TRUE(o.call("set_angular_velocity", framed));
+  EXPECT_FALSE(framed.response.success);
+  EXPECT_LT(framed.response.message.size(), 300u);
+  EXPECT_NE(framed.response.message.find("(1048576 bytes)"), std::string::npos)
+      << framed.response.message.substr(0, 300);
+
+  // A quaternion with a norm above the largest double: normalised, not refused.
+  const double big = 1.7e308;
+  const std::size_t seen = o.events.size();
+  auto huge_q = state(0, 0, 0.02, big, big, big, big);
+  ASSERT_TRUE(o.call("set_state", huge_q));
+  ASSERT_TRUE(huge_q.response.success) << huge_q.response.message;
+  const auto event = o.wait_for_event(seen);
+  ASSERT_TRUE(event);
+  EXPECT_DOUBLE_EQ(event->pose.orientation.w, 0.5);
+  EXPECT_DOUBLE_EQ(event->pose.orientation.x, 0.5);
+
+  // 1.5 s later (past the 1.024 s at which the node used to exit) it still publishes and a
+  // change it answers "applied" for is applied.
+  const auto later = o.odom_after(event->header.stamp, 75);
+  ASSERT_GE(later.size(), 75u) << "the node stopped publishing";
+  EXPECT_GE(vgtest::seconds_between(event->header.stamp, later.back().header.stamp), 1.4);
+  for (const auto& m : later) {
+    EXPECT_TRUE(std::isfinite(m.twist.twist.linear.x) && std::isfinite(m.twist.twist.angular.z));
+  }
+  auto applied = angular_velocity(0, 0, 30);
+  ASSERT_TRUE(o.call("set_angular_velocity", applied));
+  ASSERT_TRUE(applied.response.success) << applied.response.message;
+  EXPECT_EQ(applied.response.message, "applied at the next physics step");
+  const auto spun = o.wait_for_event(seen + 1);
+  ASSERT_TRUE(spun);
+  EXPECT_EQ(spun->reason, "set_angular_velocity");
+  EXPECT_NEAR(spun->twist.angular.z, 30.0, 1e-12);
+
+  // Every refusal was logged, each line short (the 1 MB name cut).
+  ASSERT_TRUE(o.wait_until([&] {
+    return std::count_if(log.begin(), log.end(), [](const rosgraph_msgs::Log& m) {
+             return m.msg.find("refused") != std::string::npos;
+           }) >= 4;
+  }));
+  for (const auto& m : log) EXPECT_LT(m.msg.size(), 500u) << m.msg.substr(0, 500);
 }

@@ -2,6 +2,12 @@
 // with tf, the latched topics. Runs against a node with the exact integrator and no resets.
 #include <gtest/gtest.h>
 
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <string>
+
 #include "support/node_observer.h"
 #include "support/node_reference.h"
 
@@ -60,16 +66,33 @@ TEST(StoneNodeTf, LatchedTopicsArrive) {
   EXPECT_NEAR(info.principal_moments.y / i1, 1.0, 1e-12);
   EXPECT_NEAR(info.principal_moments.z / i3, 1.0, 1e-12);
 
+  // ~marker: a MESH_RESOURCE naming a binary STL of this stone (22 x 9.2 mm) that exists.
   const visualization_msgs::Marker& marker = *o.marker;
-  EXPECT_EQ(marker.type, visualization_msgs::Marker::TRIANGLE_LIST);
+  EXPECT_EQ(marker.type, visualization_msgs::Marker::MESH_RESOURCE);
   EXPECT_EQ(marker.header.frame_id, "stone");
   EXPECT_TRUE(marker.frame_locked);
-  EXPECT_GT(marker.points.size(), 0u);
-  EXPECT_EQ(marker.points.size() % 3, 0u);
-  for (const auto& p : marker.points) {
-    EXPECT_LE(std::hypot(p.x, p.y), 0.011 + 1e-12);
-    EXPECT_LE(std::abs(p.z), 0.0046 + 1e-12);
+  EXPECT_TRUE(marker.points.empty());
+  ASSERT_EQ(marker.mesh_resource.rfind("file:///", 0), 0u) << marker.mesh_resource;
+  std::ifstream mesh(marker.mesh_resource.substr(7), std::ios::binary);
+  ASSERT_TRUE(mesh) << marker.mesh_resource;
+  const std::string stl((std::istreambuf_iterator<char>(mesh)), std::istreambuf_iterator<char>());
+  ASSERT_GE(stl.size(), 84u);
+  std::uint32_t facets = 0;
+  std::memcpy(&facets, stl.data() + 80, 4);  // little-endian, as this (x86) machine
+  EXPECT_GT(facets, 100u);
+  ASSERT_EQ(stl.size(), 84u + 50u * facets);
+  for (std::uint32_t t = 0; t < facets; ++t) {
+    for (int v = 1; v <= 3; ++v) {
+      float p[3];
+      std::memcpy(p, stl.data() + 84 + 50 * t + 12 * v, sizeof p);
+      EXPECT_LE(std::hypot(p[0], p[1]), 0.011 + 1e-8);
+      EXPECT_LE(std::abs(p[2]), 0.0046 + 1e-8);
+    }
   }
+  // Republished every second, so a viewer that dropped one gets the next.
+  const std::size_t seen = o.markers_received;
+  EXPECT_TRUE(o.wait_until([&] { return o.markers_received >= seen + 2; }, 4.0))
+      << "~marker not republished";
 
   const virtual_go::StoneEvent& start = o.events.front();
   EXPECT_EQ(start.segment, 0u);

@@ -134,3 +134,110 @@ TEST(StoneConfig, EachBadParameterIsNamed) {
   expect_refused("stone_frame", [](vg::StoneConfig& c) { c.stone_frame = "/stone"; });
   expect_refused("stone_frame", [](vg::StoneConfig& c) { c.stone_frame = "world"; });
 }
+
+namespace {
+
+// The message of validate_config's refusal, or "accepted".
+std::string refusal(const std::function<void(vg::StoneConfig&)>& edit) {
+  vg::StoneConfig config;
+  edit(config);
+  try {
+    vg::validate_config(config);
+  } catch (const vg::ConfigError& e) {
+    return e.what();
+  }
+  return "accepted";
+}
+
+}  // namespace
+
+// issue 8: ~initial/velocity and ~gravity with finite but absurd values were accepted; the node
+// died 1.024 s later with a FATAL that named no parameter ("time 1.024 s is too large: the
+// state overflows"). Now refused at start-up, naming the parameter, the value and the limit.
+TEST(StoneConfig, AbsurdInitialVelocityAndGravityAreRefusedWithTheirLimits) {
+  EXPECT_EQ(refusal([](vg::StoneConfig& c) {
+              c.initial_velocity_world = Eigen::Vector3d(1.7564270946e+308, 0, 0);
+            }),
+            "~initial/velocity: |v| = 1.7564270946e+308 m/s exceeds ~max_speed 1000 m/s");
+  EXPECT_EQ(
+      refusal([](vg::StoneConfig& c) { c.gravity_world = Eigen::Vector3d(0, 0, -8.574e307); }),
+      "~gravity: |g| = 8.574e+307 m/s^2 exceeds ~max_gravity 1000 m/s^2");
+  EXPECT_EQ(
+      refusal([](vg::StoneConfig& c) { c.initial_position_world = Eigen::Vector3d(0, 0, 1e300); }),
+      "~initial/position: distance from the world origin = 1e+300 m exceeds "
+      "~max_distance 1000 m");
+  // The bounds are parameters: a scene that needs more sets them.
+  EXPECT_EQ(refusal([](vg::StoneConfig& c) {
+              c.gravity_world = Eigen::Vector3d(0, 0, -2000);
+              c.max_gravity = 5000;
+            }),
+            "accepted");
+}
+
+// issue 8: a too-small ~stone/width (with the default size) was blamed on ~stone/size.
+TEST(StoneConfig, TooSmallWidthIsBlamedOnTheWidth) {
+  const std::string m = refusal([](vg::StoneConfig& c) { c.stone.width = 0.005; });
+  EXPECT_EQ(m,
+            "~stone/width: stone width 0.005 m must be more than the height 0.0092 m of the "
+            "default size 33");
+  // Below the plausible range: refused by the bound, also the width's.
+  EXPECT_EQ(refusal([](vg::StoneConfig& c) { c.stone.width = 1e-200; }),
+            "~stone/width: the width must be between ~min_width 0.001 and ~max_width 1 m, got "
+            "1e-200 m");
+}
+
+// issue 8: a mass that made the principal moments subnormal was accepted, and the node then
+// published omega_z 29.875 for a requested 30 (L = I w of a subnormal I keeps few digits).
+TEST(StoneConfig, MassOutsideTheMassRangeIsRefused) {
+  EXPECT_EQ(refusal([](vg::StoneConfig& c) { c.stone.mass = 1e-303; }),
+            "~stone/mass: the mass must be between ~min_mass 1e-06 and ~max_mass 1000 kg, got "
+            "1e-303 kg");
+  EXPECT_EQ(refusal([](vg::StoneConfig& c) { c.stone.mass = 5000.0; }).rfind("~stone/mass:", 0),
+            0u);
+  // A mass from size and density is held to the same range, blamed on what set it.
+  EXPECT_EQ(refusal([](vg::StoneConfig& c) {
+              c.stone.density = 1e-3;
+            }).rfind("~stone/density: the stone's mass (from its size and density)", 0),
+            0u);
+  EXPECT_EQ(refusal([](vg::StoneConfig& c) {
+              c.stone.height = 1e-9;
+            }).rfind("~stone/height: the stone's mass", 0),
+            0u);
+  EXPECT_EQ(refusal([](vg::StoneConfig& c) { c.stone.mass = 1e-6; }), "accepted");
+}
+
+// The bounds themselves: positive, within their caps (which keep every computed number finite,
+// stone_config.h), min below max; each refusal names the bound.
+TEST(StoneConfig, BoundsAreCheckedAgainstTheirCaps) {
+  expect_refused("max_speed", [](vg::StoneConfig& c) { c.max_speed = 0.0; });
+  expect_refused("max_speed", [](vg::StoneConfig& c) { c.max_speed = 3e8; });  // above light
+  expect_refused("max_distance", [](vg::StoneConfig& c) { c.max_distance = 1e300; });
+  expect_refused("max_gravity", [](vg::StoneConfig& c) { c.max_gravity = kNaN; });
+  expect_refused("max_angular_velocity", [](vg::StoneConfig& c) { c.max_angular_velocity = 1e10; });
+  expect_refused("min_mass", [](vg::StoneConfig& c) { c.min_mass = 1e-13; });
+  expect_refused("max_mass", [](vg::StoneConfig& c) { c.max_mass = 1e13; });
+  expect_refused("max_mass", [](vg::StoneConfig& c) {
+    c.min_mass = 1.0;
+    c.max_mass = 0.5;
+  });
+  expect_refused("min_width", [](vg::StoneConfig& c) { c.min_width = kInf; });
+  expect_refused("max_width", [](vg::StoneConfig& c) { c.max_width = 1e4; });
+  expect_refused("max_width", [](vg::StoneConfig& c) {
+    c.min_width = 0.5;
+    c.max_width = 0.5;
+  });
+  EXPECT_EQ(refusal([](vg::StoneConfig& c) { c.max_speed = 3e8; }),
+            "~max_speed: must be positive and at most 299792458 m/s, got 300000000");
+  // The caps themselves are accepted.
+  EXPECT_EQ(refusal([](vg::StoneConfig& c) {
+              c.max_speed = vg::kMaxSpeedCap;
+              c.max_distance = vg::kMaxDistanceCap;
+              c.max_gravity = vg::kMaxGravityCap;
+              c.max_angular_velocity = vg::kMaxAngularVelocityCap;
+              c.min_mass = vg::kMinMassCap;
+              c.max_mass = vg::kMaxMassCap;
+              c.min_width = vg::kMinWidthCap;
+              c.max_width = vg::kMaxWidthCap;
+            }),
+            "accepted");
+}

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <limits>
+#include <string>
 
 #include "virtual_go/flight/exact_motion.h"
 #include "virtual_go/geometry/rotation.h"
@@ -23,6 +24,18 @@ vg::StoneConfig spinning_toss() {
   c.initial_velocity_world = Eigen::Vector3d(0.1, 0.0, 1.0);
   c.initial_angular_velocity_world = Eigen::Vector3d(7.0, -3.0, 45.0);  // off axis: wobbles
   return c;
+}
+
+// The default scene with an initial state that check_config refuses (beyond the plausibility
+// bounds): how the simulation behaves when a state it cannot advance is reached anyway.
+vg::CheckedConfig beyond_the_bounds(
+    const Eigen::Vector3d& position, const Eigen::Vector3d& velocity,
+    const Eigen::Quaterniond& orientation = Eigen::Quaterniond::Identity()) {
+  vg::CheckedConfig checked = vg::check_config(vg::StoneConfig());
+  checked.initial_state.position_world = position;
+  checked.initial_state.velocity_world = velocity;
+  checked.initial_state.orientation = orientation;
+  return checked;
 }
 
 double seconds_since(std::int64_t stamp_ns, std::int64_t origin_ns) {
@@ -206,10 +219,9 @@ TEST(StoneSimulation, TimeJumpsStartANewSegmentAtTheNewTime) {
 }
 
 TEST(StoneSimulation, IntegrationFailureHoldsTheStateAndResetRecovers) {
-  vg::StoneConfig c;
-  c.initial_position_world = Eigen::Vector3d(1.79e308, 0, 0);
-  c.initial_velocity_world = Eigen::Vector3d(1.7e308, 0, 0);  // overflows within a few steps
-  vg::StoneSimulation sim(c);
+  // overflows within a few steps
+  vg::StoneSimulation sim(
+      beyond_the_bounds(Eigen::Vector3d(1.79e308, 0, 0), Eigen::Vector3d(1.7e308, 0, 0)));
   sim.update(kStart);
   const vg::UpdateResult r = sim.update(kStart + 100 * kMs);
   EXPECT_FALSE(r.error.empty());
@@ -224,10 +236,8 @@ TEST(StoneSimulation, IntegrationFailureHoldsTheStateAndResetRecovers) {
 }
 
 TEST(StoneSimulation, PersistentIntegrationFailurePublishesNothingUntilRecovered) {
-  vg::StoneConfig c;
-  c.initial_position_world = Eigen::Vector3d(1.79e308, 0, 0);
-  c.initial_velocity_world = Eigen::Vector3d(1.7e308, 0, 0);
-  vg::StoneSimulation sim(c);
+  vg::StoneSimulation sim(
+      beyond_the_bounds(Eigen::Vector3d(1.79e308, 0, 0), Eigen::Vector3d(1.7e308, 0, 0)));
   sim.update(kStart);
   EXPECT_FALSE(sim.update(kStart + 100 * kMs).error.empty());
   const vg::RigidBodyState held = sim.state();
@@ -265,4 +275,169 @@ TEST(StoneSimulation, InvalidInitialStateNamesTheParameter) {
   c = vg::StoneConfig();
   c.initial_angular_velocity_world = Eigen::Vector3d(0, 0, 600);
   EXPECT_THROW(vg::StoneSimulation{c}, vg::ConfigError);
+}
+
+// issue 8: set_state with a finite but absurd velocity (x = 1.7564270946e+308) was accepted,
+// and 1.024 s later the exact integrator's re-anchoring threw out of update(): the node exited
+// with a FATAL. The request is refused naming the field, the value and the limit, and nothing
+// changes.
+TEST(StoneSimulation, AbsurdSetStateVelocityIsRefusedAndTheMotionGoesOn) {
+  vg::StoneSimulation sim(spinning_toss());
+  sim.update(kStart);
+  try {
+    sim.set_state(Eigen::Vector3d::Zero(), Eigen::Vector4d(0, 0, 0, 1),
+                  Eigen::Vector3d(1.7564270946e+308, 0, 0), Eigen::Vector3d::Zero());
+    ADD_FAILURE() << "accepted";
+  } catch (const vg::InvalidArgument& e) {
+    EXPECT_EQ(e.field(), "twist.linear");
+    EXPECT_STREQ(e.what(), "twist.linear: |v| = 1.7564270946e+308 m/s exceeds ~max_speed 1000 m/s");
+  }
+  const vg::ExactMotion exact(sim.setup(), sim.initial_state());
+  std::int64_t now = kStart;
+  for (int tick = 0; tick < 150; ++tick) {  // 2.4 s: past the re-anchoring at 1.024 s
+    now += 16 * kMs;
+    const vg::UpdateResult r = sim.update(now);
+    EXPECT_TRUE(r.advanced);
+    EXPECT_TRUE(r.error.empty()) << r.error;
+    EXPECT_TRUE(r.events.empty());
+  }
+  EXPECT_LT(vg::orientation_error(exact.state_at(seconds_since(sim.time_ns(), kStart)).orientation,
+                                  sim.state().orientation),
+            1e-10);
+}
+
+// issue 8 (the same FATAL, reached without the bounds): an exception from a step (here the
+// exact integrator's re-anchoring at step 1024, whose closed form overflows) must not leave
+// update(). The state is held, the cause is reported once, and again to the next request.
+TEST(StoneSimulation, NoExceptionLeavesUpdateAndTheFailureIsReportedOnce) {
+  vg::StoneSimulation sim(
+      beyond_the_bounds(Eigen::Vector3d::Zero(), Eigen::Vector3d(1.7564270946e+308, 0, 0)));
+  sim.update(kStart);
+  std::int64_t now = kStart;
+  std::vector<std::string> errors;
+  std::int64_t last_published = kStart;
+  for (int tick = 0; tick < 150; ++tick) {
+    now += 16 * kMs;
+    vg::UpdateResult r;
+    ASSERT_NO_THROW(r = sim.update(now)) << "tick " << tick;
+    if (!r.error.empty()) errors.push_back(r.error);
+    if (r.advanced) last_published = r.stamp_ns;
+  }
+  ASSERT_EQ(errors.size(), 1u) << "logged once";
+  EXPECT_NE(errors[0].find("the physics step after 1700000001.146456789 s failed"),
+            std::string::npos)
+      << errors[0];
+  EXPECT_NE(errors[0].find("too large: the state overflows"), std::string::npos) << errors[0];
+  EXPECT_TRUE(sim.held());
+  EXPECT_EQ(last_published, kStart + 1023 * kMs) << "the last state before the failed step";
+  EXPECT_TRUE(sim.state().position_world.allFinite());
+  // The next request hears of it; the one after does not.
+  const std::string first = sim.reset();
+  EXPECT_EQ(first.rfind("applied at the next physics step; note: the physics step after", 0), 0u)
+      << first;
+  EXPECT_NE(first.find("too large"), std::string::npos) << first;
+  EXPECT_EQ(sim.reset(), "applied at the next physics step");
+  const vg::UpdateResult after = sim.update(now + 16 * kMs);
+  EXPECT_TRUE(after.advanced);
+  EXPECT_FALSE(sim.held());
+  ASSERT_EQ(after.events.size(), 1u);
+  EXPECT_EQ(after.events[0].reason, vg::EventReason::reset);
+}
+
+// issue 8: states near the largest double silenced the node while set_angular_velocity kept
+// answering "applied at the next physics step", and was never applied (33 of 33 calls).
+// Requests cannot reach such states any more (the bounds); a held state refuses the request
+// with the cause instead of claiming it applies, and a reset brings both back.
+TEST(StoneSimulation, HeldStateRefusesAngularVelocityInsteadOfClaimingItApplies) {
+  vg::StoneSimulation sim(
+      beyond_the_bounds(Eigen::Vector3d(1.79e308, 0, 0), Eigen::Vector3d(1.7e308, 0, 0)));
+  sim.update(kStart);
+  ASSERT_FALSE(sim.update(kStart + 100 * kMs).error.empty());
+  for (int call = 0; call < 33; ++call) {
+    try {
+      sim.set_angular_velocity(Eigen::Vector3d(0, 0, 30), "world");
+      ADD_FAILURE() << "call " << call << " answered applied while the state is held";
+    } catch (const vg::RequestRefused& e) {
+      const std::string m = e.what();
+      EXPECT_EQ(m.rfind("refused: the state is held since the physics step after", 0), 0u) << m;
+      EXPECT_NE(m.find("~reset or ~set_state"), std::string::npos) << m;
+    }
+    EXPECT_FALSE(sim.update(kStart + (101 + call) * kMs).advanced);
+  }
+  // The same states through a request: refused by the bounds, naming them.
+  EXPECT_THROW(sim.set_state(Eigen::Vector3d(1.79e308, 0, 0), Eigen::Vector4d(0, 0, 0, 1),
+                             Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()),
+               vg::InvalidArgument);
+  // After a set_state (queued before it) the angular velocity applies again, at the same
+  // step. (A reset would return to this test's initial state, which fails again.)
+  sim.set_state(Eigen::Vector3d::Zero(), Eigen::Vector4d(0, 0, 0, 1), Eigen::Vector3d::Zero(),
+                Eigen::Vector3d::Zero());
+  EXPECT_NO_THROW(sim.set_angular_velocity(Eigen::Vector3d(0, 0, 30), "world"));
+  const vg::UpdateResult r = sim.update(kStart + 200 * kMs);
+  ASSERT_TRUE(r.advanced);
+  ASSERT_EQ(r.events.size(), 1u);
+  EXPECT_EQ(r.events[0].reason, vg::EventReason::set_angular_velocity);
+  EXPECT_NEAR(r.events[0].output.angular_velocity_world.z(), 30.0, 1e-12);
+  EXPECT_EQ(sim.set_angular_velocity(Eigen::Vector3d(0, 0, 20), ""),
+            "applied at the next physics step");
+}
+
+// issue 8: while no step came (use_sim_time without /clock), accepted requests queued without
+// bound (+32.8 MB after 200,000 calls). The queue holds kMaxPendingRequests; more are refused
+// with the reason, and the queue empties at the next step.
+TEST(StoneSimulation, PendingRequestsAreBoundedWhileNoStepComes) {
+  vg::StoneSimulation sim(spinning_toss());
+  EXPECT_FALSE(sim.update(0).advanced);  // ROS time 0: no /clock yet
+  std::size_t accepted = 0, refused = 0;
+  for (int call = 0; call < 200000; ++call) {
+    try {
+      if (call % 2 == 0) {
+        sim.set_angular_velocity(Eigen::Vector3d(0, 0, call % 100), "stone");
+      } else {
+        sim.reset();
+      }
+      ++accepted;
+    } catch (const vg::RequestRefused& e) {
+      if (refused++ == 0) {
+        const std::string m = e.what();
+        EXPECT_EQ(m.rfind("refused: 1000 requests already wait for the next physics step", 0), 0u)
+            << m;
+        EXPECT_NE(m.find("/clock"), std::string::npos) << m;
+      }
+    }
+  }
+  EXPECT_EQ(accepted, vg::kMaxPendingRequests);
+  EXPECT_EQ(refused, 200000 - vg::kMaxPendingRequests);
+  EXPECT_EQ(sim.pending_requests(), vg::kMaxPendingRequests);
+  // Time starts: they apply at the first step, as one segment, and the queue is free again.
+  sim.update(kStart);
+  const vg::UpdateResult r = sim.update(kStart + kMs);
+  ASSERT_EQ(r.events.size(), 1u);
+  EXPECT_EQ(sim.pending_requests(), 0u);
+  EXPECT_NO_THROW(sim.reset());
+}
+
+// issue 8: a mass that made the moments subnormal published omega_z 29.875 for 30. At the
+// smallest mass the bounds allow, the published rate is the requested one to round-off.
+TEST(StoneSimulation, SmallestMassKeepsTheRequestedRate) {
+  vg::StoneConfig c = spinning_toss();
+  c.stone.mass = c.min_mass;
+  vg::StoneSimulation sim(c);
+  sim.update(kStart);
+  sim.set_angular_velocity(Eigen::Vector3d(0, 0, 30), "stone");
+  sim.update(kStart + kMs);
+  EXPECT_NEAR(sim.output().angular_velocity_body.z(), 30.0, 30.0 * 1e-15);
+  EXPECT_NEAR(sim.output().angular_velocity_body.x(), 0.0, 1e-14);
+}
+
+// issue 8: a refused 1 MB frame name came back (and was logged) in full.
+TEST(StoneSimulation, LongFrameNameIsCutInTheRefusal) {
+  vg::StoneSimulation sim(spinning_toss());
+  try {
+    sim.set_angular_velocity(Eigen::Vector3d(0, 0, 1), std::string(1 << 20, 'f'));
+    ADD_FAILURE() << "accepted";
+  } catch (const vg::InvalidArgument& e) {
+    EXPECT_LT(std::string(e.what()).size(), 200u);
+    EXPECT_NE(std::string(e.what()).find("(1048576 bytes)"), std::string::npos) << e.what();
+  }
 }

@@ -38,8 +38,10 @@ class NodeObserver {
         node + "/events", 100,
         [this](const virtual_go::StoneEvent::ConstPtr& m) { events.push_back(*m); }));
     subs_.push_back(nh.subscribe<visualization_msgs::Marker>(
-        node + "/marker", 1,
-        [this](const visualization_msgs::Marker::ConstPtr& m) { marker = *m; }));
+        node + "/marker", 1, [this](const visualization_msgs::Marker::ConstPtr& m) {
+          marker = *m;
+          ++markers_received;
+        }));
   }
 
   // Spins until pred() holds or the wall-clock timeout passes (sim time may stand still).
@@ -121,6 +123,7 @@ class NodeObserver {
   std::vector<virtual_go::StoneEvent> events;
   std::optional<virtual_go::StoneInfo> info;
   std::optional<visualization_msgs::Marker> marker;
+  std::size_t markers_received = 0;
 
  private:
   std::string node_;

@@ -105,7 +105,8 @@ std::size_t write_run_bag(const std::string& path, const SyntheticRun& run) {
     info.initial_pose = pose_msg(s0.position, s0.orientation);
     bag.write("/stone/info", start, info, latched_header<virtual_go::StoneInfo>());
   }
-  auto write_event = [&](std::int64_t ns, std::uint32_t segment, const std::string& reason) {
+  auto write_event = [&](std::int64_t ns, std::uint32_t segment, const std::string& reason,
+                         double huge = 0.0) {
     const TrueState s0 = true_state(0.0);
     virtual_go::StoneEvent e;
     e.header.stamp = stamp(ns);
@@ -114,6 +115,10 @@ std::size_t write_run_bag(const std::string& path, const SyntheticRun& run) {
     e.reason = reason;
     e.pose = pose_msg(s0.position, s0.orientation);
     e.twist.linear = vec_msg(s0.velocity_world);
+    if (huge != 0.0) {
+      e.pose.position.x = huge;
+      e.twist.linear.x = huge;
+    }
     e.twist.angular = vec_msg(s0.orientation * s0.angular_velocity_body);
     e.angular_momentum = vec_msg(s0.angular_momentum_world);
     bag.write("/stone/events", stamp(ns), e, latched_header<virtual_go::StoneEvent>());
@@ -123,17 +128,23 @@ std::size_t write_run_bag(const std::string& path, const SyntheticRun& run) {
   const auto period_ns = static_cast<std::int64_t>(std::llround(1e9 / run.rate));
   const auto count = static_cast<std::size_t>(std::llround(run.duration * run.rate)) + 1;
   const auto reset_ns = static_cast<std::int64_t>(std::llround(run.reset_after * 1e9));
-  bool reset_written = false;
+  const auto overflow_ns =
+      static_cast<std::int64_t>(std::llround(run.overflowing_event_after * 1e9));
+  bool reset_written = false, overflow_written = false;
   std::size_t written = 0;
   for (std::size_t i = 0; i < count; ++i) {
     if (std::count(run.drop.begin(), run.drop.end(), i) > 0) continue;
     const std::int64_t since_start = static_cast<std::int64_t>(i) * period_ns;
     // After a reset the motion starts again from the initial state at the reset time.
     std::int64_t segment_start = 0;
+    if (overflow_ns > 0 && since_start >= overflow_ns && !overflow_written) {
+      write_event(run.start_ns + overflow_ns, 1, "set_state", 1.5e308);
+      overflow_written = true;
+    }
     if (reset_ns > 0 && since_start >= reset_ns) {
       segment_start = reset_ns;
       if (!reset_written && run.with_events && !run.reset_without_event) {
-        write_event(run.start_ns + reset_ns, 1, "reset");
+        write_event(run.start_ns + reset_ns, overflow_written ? 2 : 1, "reset");
       }
       reset_written = true;
     }

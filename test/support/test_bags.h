@@ -28,6 +28,10 @@ struct SyntheticRun {
   // written unless reset_without_event.
   double reset_after = 0.0;
   bool reset_without_event = false;
+  // A set_state event this long after the start (0 = none) whose state is so large that its
+  // closed form overflows within 0.2 s (position and velocity x 1.5e308). The recorded motion
+  // goes on as before; with reset_after the reset starts a good segment again.
+  double overflowing_event_after = 0.0;
   // Added to the recorded orientation angle about world z (rad per second of segment time).
   double orientation_drift_rate = 0.0;
 };

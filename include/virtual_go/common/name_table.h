@@ -28,11 +28,11 @@ class NameTable {
     }
     return nullptr;
   }
-  // Throws InvalidArgument "unknown <what> '<name>' (known: a b c)".
+  // Throws InvalidArgument "unknown <what> '<name>' (known: a b c)"; a long name is cut.
   const Entry& at(const std::string& name) const {
     if (const Entry* e = find(name)) return *e;
-    throw InvalidArgument(
-        field_, "unknown " + what_ + " '" + name + "' (known: " + join(names(), " ") + ")");
+    throw InvalidArgument(field_, "unknown " + what_ + " " + quote_user_text(name) +
+                                      " (known: " + join(names(), " ") + ")");
   }
   std::vector<std::string> names() const {
     std::vector<std::string> out;

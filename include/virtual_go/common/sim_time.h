@@ -4,6 +4,8 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
+#include <string>
 
 namespace virtual_go {
 
@@ -23,6 +25,17 @@ inline std::int64_t round_to_ns(double s) { return std::llround(to_nanoseconds(s
 // A ROS stamp's (sec, nsec) pair -> ns.
 inline std::int64_t stamp_to_ns(std::uint32_t sec, std::uint32_t nsec) {
   return static_cast<std::int64_t>(sec) * kNanosecondsPerSecond + nsec;
+}
+
+// "1700000001.146456789": a stamp in seconds with all nine digits of its nanoseconds (a double
+// of seconds since 1970 keeps only about seven of them).
+inline std::string stamp_text(std::int64_t ns) {
+  const std::int64_t magnitude = ns < 0 ? -ns : ns;
+  char text[32];
+  std::snprintf(text, sizeof text, "%s%lld.%09lld", ns < 0 ? "-" : "",
+                static_cast<long long>(magnitude / kNanosecondsPerSecond),
+                static_cast<long long>(magnitude % kNanosecondsPerSecond));
+  return text;
 }
 
 }  // namespace virtual_go

@@ -35,6 +35,14 @@ void require_finite(const std::string& field, double value);
 void require_finite(const std::string& field, const Eigen::Vector3d& v);
 void require_positive(const std::string& field, double value);
 
+// |v| for any finite v, without the overflow (or underflow) of the plain sum of squares: a
+// component above 1.3e154 makes v.norm() infinite. Infinite only when |v| itself exceeds the
+// largest double. For checking inputs against limits; cheaper norms serve bounded values.
+double norm_without_overflow(const Eigen::Vector3d& v);
+// "= 2e+200" as messages print a norm after "|v| ", or "> 1.7976931348623157e+308" when |v|
+// exceeds the largest double.
+std::string norm_text(const Eigen::Vector3d& v);
+
 // Returns q / |q|; throws for a non-finite or (near) zero quaternion.
 Eigen::Quaterniond require_unit_quaternion(const std::string& field, const Eigen::Quaterniond& q);
 

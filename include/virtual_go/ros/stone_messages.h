@@ -14,6 +14,7 @@
 #include "virtual_go/StoneEvent.h"
 #include "virtual_go/StoneInfo.h"
 #include "virtual_go/body/rigid_body.h"
+#include "virtual_go/geometry/tessellation.h"
 #include "virtual_go/sim/segment_event.h"
 #include "virtual_go/sim/stone_simulation.h"
 
@@ -21,27 +22,33 @@ namespace virtual_go {
 
 ros::Time to_ros_time(std::int64_t ns);
 
-geometry_msgs::Pose to_pose_msg(const RigidBodyState& state);
+// Messages of a StateOutput (sim/state_output.h): the numbers the simulation checked finite,
+// copied, so the node publishes nothing it did not check.
+geometry_msgs::Pose to_pose_msg(const StateOutput& output);
 // World-frame twist: linear m/s, angular rad/s.
-geometry_msgs::Twist to_world_twist_msg(const RigidBody& body);
+geometry_msgs::Twist to_world_twist_msg(const StateOutput& output);
 // Body-frame twist (the nav_msgs/Odometry convention): R^T v and the body angular velocity.
-geometry_msgs::Twist to_body_twist_msg(const RigidBody& body);
+geometry_msgs::Twist to_body_twist_msg(const StateOutput& output);
 
-geometry_msgs::TransformStamped to_transform_msg(const RigidBodyState& state,
-                                                 const ros::Time& stamp,
+geometry_msgs::TransformStamped to_transform_msg(const StateOutput& output, const ros::Time& stamp,
                                                  const std::string& world_frame,
                                                  const std::string& stone_frame);
-geometry_msgs::PoseStamped to_pose_stamped_msg(const RigidBodyState& state, const ros::Time& stamp,
+geometry_msgs::PoseStamped to_pose_stamped_msg(const StateOutput& output, const ros::Time& stamp,
                                                const std::string& world_frame);
-nav_msgs::Odometry to_odometry_msg(const RigidBody& body, const ros::Time& stamp,
+nav_msgs::Odometry to_odometry_msg(const StateOutput& output, const ros::Time& stamp,
                                    const std::string& world_frame, const std::string& stone_frame);
 
 StoneInfo to_info_msg(const StoneSimulation& sim);
-StoneEvent to_event_msg(const SegmentEvent& event, const MotionModel& model,
-                        const std::string& world_frame);
+StoneEvent to_event_msg(const SegmentEvent& event, const std::string& world_frame);
+// The lens as rviz draws it (body frame), for both marker forms below.
+TriangleMesh stone_display_mesh(const Stone& stone);
 // The tessellated lens as a TRIANGLE_LIST in the stone frame, locked to it so rviz moves it
-// with tf.
+// with tf. 138 KB: the fallback when the mesh file cannot be written.
 visualization_msgs::Marker to_marker_msg(const Stone& stone, const std::string& color,
                                          const std::string& stone_frame);
+// The same lens as a MESH_RESOURCE marker naming a mesh file (file:// URI), a few hundred
+// bytes, so it can be republished.
+visualization_msgs::Marker to_mesh_marker_msg(const std::string& mesh_uri, const std::string& color,
+                                              const std::string& stone_frame);
 
 }  // namespace virtual_go

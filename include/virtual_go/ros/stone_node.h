@@ -5,12 +5,14 @@
 #include <ros/ros.h>
 #include <std_srvs/Trigger.h>
 #include <tf2_ros/transform_broadcaster.h>
+#include <visualization_msgs/Marker.h>
 
 #include <cstdint>
 #include <string>
 
 #include "virtual_go/SetAngularVelocity.h"
 #include "virtual_go/SetState.h"
+#include "virtual_go/sim/clock_watch.h"
 #include "virtual_go/sim/stone_simulation.h"
 
 namespace virtual_go {
@@ -24,6 +26,8 @@ class StoneNode {
   void on_timer(const ros::TimerEvent& event);
   void publish_state(std::int64_t stamp_ns);
   void publish_events(const UpdateResult& result);
+  void on_marker_timer(const ros::WallTimerEvent& event);
+  void on_clock_watch(const ros::WallTimerEvent& event);
 
   bool on_set_angular_velocity(SetAngularVelocity::Request& request,
                                SetAngularVelocity::Response& response);
@@ -43,6 +47,14 @@ class StoneNode {
   ros::ServiceServer reset_srv_;
   ros::ServiceServer set_state_srv_;
   ros::Timer timer_;
+  // The marker, built once; republished every second once tf of the stone flows (see
+  // stone_node.cpp, StoneNode::StoneNode, for why).
+  visualization_msgs::Marker marker_;
+  bool marker_sent_ = false;
+  ros::WallTimer marker_timer_;
+  // Under use_sim_time: says so when ROS time stands still (no /clock).
+  ClockWatch clock_watch_;
+  ros::WallTimer clock_watch_timer_;
 };
 
 }  // namespace virtual_go

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "virtual_go/body/rigid_body_state.h"
+#include "virtual_go/sim/state_output.h"
 
 namespace virtual_go {
 
@@ -21,6 +22,7 @@ struct SegmentEvent {
   std::uint32_t segment = 0;  // 0 at start, +1 per event
   EventReason reason = EventReason::start;
   RigidBodyState state;  // the segment's first state
+  StateOutput output;    // what a message shows of it (checked finite)
 };
 
 }  // namespace virtual_go

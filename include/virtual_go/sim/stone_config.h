@@ -4,6 +4,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -33,6 +34,31 @@ constexpr double kMinRateHz = 0.001;
 constexpr double kMaxRateHz = 10000.0;
 constexpr double kMaxAutoResetPeriodS = 1e6;
 
+// Hard caps on the plausibility bounds below (a bound parameter beyond its cap is refused).
+// They make every number the node computes finite, whatever is requested within the bounds:
+// simulated time t since a segment's start is below 2^63 ns = 9.3e9 s (int64 stamps), so
+//   |v(t)| <= V + G t               <= 3e8 + 1e12 * 9.3e9              < 1e22  m/s
+//   |x(t)| <= D + V t + G t^2 / 2   <= 1e12 + 2.8e18 + 4.3e31          < 1e32  m
+// and, with the lens's moments between those of a thin lens (I1 = m a^2 / 6, I3 = m a^2 / 3)
+// and a sphere (2 m a^2 / 5; docs/physics.md, "The lens"),
+//   I      <= m a^2 / 2             <= 1e12 * 500^2 / 2                < 2e17  kg m^2
+//   I      >= m a^2 / 6             >= 1e-12 * (5e-10)^2 / 6           > 4e-32 kg m^2 (normal)
+//   |L|    <= I |w|                 <= 2e17 * 1e9                      < 1e27  kg m^2/s
+//   |w|    <= |L| / I1 <= 2 W (I3 <= 2 I1),                 |w| t  < 2e19  rad
+// and energies (m v^2, m g x, w L) at most about 1e56. Every intermediate of a quaternion-vector
+// product (at most 4x its input), a squared norm (< 1e64) or an energy is then far below the
+// largest double (1.8e308): no overflow anywhere in the flight, its messages or a bag.
+constexpr double kMaxSpeedCap = 299792458.0;    // m/s, the speed of light
+constexpr double kMaxDistanceCap = 1e12;        // m
+constexpr double kMaxGravityCap = 1e12;         // m/s^2, a neutron star's surface
+constexpr double kMaxAngularVelocityCap = 1e9;  // rad/s
+constexpr double kMinMassCap = 1e-12;           // kg
+constexpr double kMaxMassCap = 1e12;            // kg
+constexpr double kMinWidthCap = 1e-9;           // m
+constexpr double kMaxWidthCap = 1e3;            // m
+// Requests waiting for the next physics step (none comes while ROS time stands still).
+constexpr std::size_t kMaxPendingRequests = 1000;
+
 // ~stone/color: the marker's colour.
 const std::vector<std::string>& stone_colors();
 
@@ -48,8 +74,16 @@ struct StoneConfig {
   Eigen::Vector4d initial_orientation_xyzw = Eigen::Vector4d(0.0, 0.0, 0.0, 1.0);  // body->world
   Eigen::Vector3d initial_velocity_world = Eigen::Vector3d::Zero();                // m/s
   Eigen::Vector3d initial_angular_velocity_world = Eigen::Vector3d::Zero();        // rad/s
-  double max_angular_velocity = 500.0;                                             // rad/s
-  double auto_reset_period_s = 0.0;                                                // 0 = never
+  // Plausibility bounds: requests and parameters beyond them are refused (SI units).
+  double max_angular_velocity = 500.0;  // rad/s, |w|
+  double max_speed = 1000.0;            // m/s, |v|
+  double max_distance = 1000.0;         // m, |x| from the world origin
+  double max_gravity = 1000.0;          // m/s^2, |g|
+  double min_mass = 1e-6;               // kg
+  double max_mass = 1000.0;             // kg
+  double min_width = 0.001;             // m, lens diameter
+  double max_width = 1.0;               // m
+  double auto_reset_period_s = 0.0;     // 0 = never
   std::string world_frame = "world";
   std::string stone_frame = "stone";
 };
@@ -65,7 +99,7 @@ struct CheckedConfig {
   std::int64_t dt_ns;
   double dt_s;                 // to_seconds(dt_ns), not config.dt_s
   std::int64_t auto_reset_ns;  // 0 = never
-  AngularVelocityLimit angular_velocity_limit;
+  RequestLimits limits;
   RigidBodyState initial_state;
 };
 

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <deque>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -15,6 +16,7 @@
 #include "virtual_go/go/stone.h"
 #include "virtual_go/sim/segment_event.h"
 #include "virtual_go/sim/sim_clock.h"
+#include "virtual_go/sim/state_output.h"
 #include "virtual_go/sim/state_request.h"
 #include "virtual_go/sim/stone_config.h"
 
@@ -24,31 +26,46 @@ struct UpdateResult {
   bool advanced = false;             // a new state exists at stamp_ns: publish it
   std::int64_t stamp_ns = 0;         // simulated time of state()
   std::vector<SegmentEvent> events;  // new segments started during this update, in order
-  // Non-empty when the integrator failed: the state is held and nothing is published until
-  // reset, set_state or an auto reset replaces it.
+  // Set once, by the update at which a step failed (log it): its cause. The state is then
+  // held and nothing is published until reset, set_state or an auto reset replaces it.
   std::string error;
+};
+
+// A request refused for a reason other than a bad field: the state is held after a failed
+// step, or too many requests wait for a step. what() says why and what to do.
+class RequestRefused : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
 };
 
 class StoneSimulation {
  public:
   // Throws ConfigError naming the parameter.
   explicit StoneSimulation(const StoneConfig& config);
+  // A configuration from check_config() (tests may alter it to reach states the checks refuse).
   explicit StoneSimulation(CheckedConfig checked);
 
-  // Advances to the latest grid time at or before ROS time now_ns (0 = not valid yet).
-  UpdateResult update(std::int64_t now_ns);
+  // Advances to the latest grid time at or before ROS time now_ns (0 = not valid yet). Never
+  // throws: whatever fails holds the state, and is reported once in UpdateResult::error and
+  // to the next request.
+  UpdateResult update(std::int64_t now_ns) noexcept;
 
-  // Requests validate at once (InvalidArgument naming the field; nothing changes) and take
-  // effect at the next grid time, which becomes the first state of a new segment: stamps stay
-  // strictly increasing and the state already published at the current time stays true.
-  // Requests due at the same step apply in order and start one segment, named after the last.
-  void reset();
+  // Requests validate at once (InvalidArgument naming the field and its limit; nothing
+  // changes) and take effect at the next grid time, which becomes the first state of a new
+  // segment: stamps stay strictly increasing and the state already published at the current
+  // time stays true. Requests due at the same step apply in order and start one segment,
+  // named after the last. At most kMaxPendingRequests wait; more are refused (RequestRefused).
+  // Each returns the answer for the caller: "applied at the next physics step", plus the
+  // cause of a failed step not yet reported.
+  std::string reset();
   // frame: "" / "world" / world frame id, or "stone" / stone frame id. For rigid_body this sets
-  // L = I w at the instant it takes effect.
-  void set_angular_velocity(const Eigen::Vector3d& omega, const std::string& frame);
-  void set_state(const Eigen::Vector3d& position_world, const Eigen::Vector4d& orientation_xyzw,
-                 const Eigen::Vector3d& velocity_world,
-                 const Eigen::Vector3d& angular_velocity_world);
+  // L = I w at the instant it takes effect. Refused (RequestRefused) while the state is held:
+  // it would change a state that cannot move.
+  std::string set_angular_velocity(const Eigen::Vector3d& omega, const std::string& frame);
+  std::string set_state(const Eigen::Vector3d& position_world,
+                        const Eigen::Vector4d& orientation_xyzw,
+                        const Eigen::Vector3d& velocity_world,
+                        const Eigen::Vector3d& angular_velocity_world);
 
   const StoneConfig& config() const { return checked_.config; }
   const Stone& stone() const { return checked_.stone; }
@@ -63,7 +80,12 @@ class StoneSimulation {
   bool started() const { return clock_.started(); }
   const RigidBodyState& state() const { return state_; }
   RigidBody body() const { return RigidBody(checked_.setup.model, state_); }
+  // What messages show of state() (after an update that advanced): checked finite.
+  const StateOutput& output() const { return output_; }
   std::int64_t time_ns() const { return clock_.time_ns(); }
+  // True after a failed step until a change replaces the state.
+  bool held() const { return held_; }
+  std::size_t pending_requests() const { return pending_.size(); }
 
  private:
   struct Change {
@@ -74,22 +96,32 @@ class StoneSimulation {
     bool replaces_state() const { return reason != EventReason::set_angular_velocity; }
   };
 
+  void advance_to(std::int64_t now_ns, UpdateResult& result);
   void step(UpdateResult& result);
+  // A change due at the next step replaces the state (reset, set_state, auto reset).
+  bool replacement_due() const;
   // The state was replaced from outside the integration: a new segment's first state.
   void replace_state(const RigidBodyState& state);
   void begin_segment(EventReason reason, std::int64_t stamp_ns, UpdateResult& result);
+  void hold(const std::string& cause, UpdateResult& result);
+  void enqueue(Change change);
+  std::string answer();
 
   CheckedConfig checked_;
   std::unique_ptr<Integrator> integrator_;
   SimClock clock_;
   RigidBodyState state_;
-  FlightCache flight_cache_;  // the stone's: what the integrator carries between its steps
+  StateOutput output_;         // of state_, unless output_stale_
+  bool output_stale_ = false;  // state_ moved on since output_ was computed
+  FlightCache flight_cache_;   // the stone's: what the integrator carries between its steps
   std::int64_t start_ns_ = 0;
   std::int64_t segment_start_ns_ = 0;
   std::uint32_t segment_ = 0;
-  // The integrator failed on state_ and no change has replaced it since: there is no new state
-  // to publish, also not after a time jump (it would re-stamp the old one).
+  // A step failed on state_ and no change has replaced it since: there is no new state to
+  // publish, also not after a time jump (it would re-stamp the old one).
   bool held_ = false;
+  std::string failure_;           // why, for requests
+  bool failure_reported_ = true;  // the next request's answer has carried failure_
   std::deque<Change> pending_;
 };
 

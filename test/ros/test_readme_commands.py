@@ -1,0 +1,355 @@
+#!/usr/bin/python3
+"""README.md, pasted: runs the README's commands the way a user types them, in the order the
+README gives them, against the master of this rostest, and fails when one stops working.
+
+Every line of a ```bash block is run through bash, from a scratch directory (the directory
+"you launched from"). A `roslaunch` line stands for the first terminal: it keeps running, as
+long as the following lines need it, until the next `roslaunch` line stops it with Ctrl-C
+(SIGINT to its process group). Each other line is checked by what it is:
+
+- `rosrun PKG EXE --help`: exit 0, prints a usage;
+- `rostopic echo -n 1 TOPIC`: exit 0, prints a message (a missing Python message module makes
+  rostopic fail with "Cannot load message class"); a `MESH_RESOURCE` names a file that exists;
+- `rostopic echo TOPIC` and `tf_echo ... RATE`: run a few seconds then Ctrl-C; they print
+  messages; tf_echo's poses differ from line to line (the motion shows);
+- `rosservice call /stone/...`: exit 0, `success: True`, and one second later the latest
+  segment on /stone/events is still the one this call started (the scene does not undo it);
+- `rosrun virtual_go bag_report ...`: exit 0 (with --strict 0 or 1, as the README says); its
+  --csv and --plot files exist;
+- `rosbag info BAG`, `rosbag check BAG`: exit 0; check finds no type that needs a migration;
+- `source FILE`: the file exists (the test itself runs in that environment).
+
+`roslaunch` lines of other blocks (lists of variants, some with rviz) are loaded with
+`roslaunch --nodes`: the package, the launch file, its arguments and files must resolve.
+A bash line of another kind fails the test: every command the README gives is checked.
+
+The README must keep showing: both --help lines, `rostopic echo -n 1` on every topic the live
+node publishes and a `rosservice call` of every service it offers (both taken from the master
+while the node runs), a tf_echo live and during a replay, a record and a replay launch. Last, a
+live launch after the replay must publish (a `use_sim_time` left behind would silence it).
+"""
+import os
+import re
+import shlex
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+import unittest
+
+import rosgraph
+import rospkg
+import rospy
+import rostest
+from virtual_go.msg import StoneEvent
+
+PKG = "virtual_go"
+NODE = "/stone"
+TIMEOUT_S = 30.0  # for a command that should finish by itself
+STREAM_S = 4.0  # how long a streaming command runs before Ctrl-C
+LAUNCH_MIN_S = 8.0  # a launch runs at least this long (a recording then holds several seconds)
+# Services every node has; not the README's business.
+ROS_SERVICES = ("get_loggers", "set_logger_level")
+
+
+def readme_blocks(path):
+    """[(language, first line number, [lines])] of the fenced blocks of a Markdown file."""
+    blocks, current = [], None
+    with open(path) as f:
+        for number, line in enumerate(f, 1):
+            line = line.rstrip("\n")
+            if line.startswith("```"):
+                if current is None:
+                    current = (line[3:].strip(), number + 1, [])
+                else:
+                    blocks.append(current)
+                    current = None
+            elif current is not None:
+                current[2].append(line)
+    return blocks
+
+
+def words(line):
+    return shlex.split(line, comments=True)
+
+
+class Process:
+    """A command run through bash in its own process group, like a terminal's foreground job."""
+
+    def __init__(self, line, cwd, env, log):
+        self.line = line
+        self.log = log
+        self.out = open(log, "w+")
+        self.process = subprocess.Popen(["bash", "-c", line], cwd=cwd, env=env, stdout=self.out,
+                                        stderr=subprocess.STDOUT, start_new_session=True)
+
+    def ctrl_c(self, timeout_s=20.0):
+        if self.process.poll() is None:
+            os.killpg(self.process.pid, signal.SIGINT)
+            try:
+                self.process.wait(timeout=timeout_s)
+            except subprocess.TimeoutExpired:
+                os.killpg(self.process.pid, signal.SIGKILL)
+                self.process.wait()
+        return self.output()
+
+    def wait(self, timeout_s):
+        try:
+            self.process.wait(timeout=timeout_s)
+        except subprocess.TimeoutExpired:
+            self.ctrl_c()
+            raise
+        return self.output()
+
+    def output(self):
+        self.out.flush()
+        with open(self.log, errors="replace") as f:
+            return f.read()
+
+
+class ReadmeCommandsTest(unittest.TestCase):
+    def setUp(self):
+        self.root = rospkg.RosPack().get_path(PKG)
+        self.readme = os.path.join(self.root, "README.md")
+        self.folder = tempfile.mkdtemp(prefix="readme_", dir=os.environ.get("ROS_HOME"))
+        # The user's shell: this environment (the devel space sourced), in the scratch folder.
+        self.env = dict(os.environ, PWD=self.folder)
+        self.master = rosgraph.Master("/readme_commands_test")
+        self.terminal = None  # the running roslaunch line
+        self.terminal_started = 0.0
+        self.launch_lines = []  # bash-block roslaunch lines, in order
+        self.count = 0
+        self.line_number = 0
+        self.since = 0.0
+        self.ran = []  # (kind, line) of every checked line
+        self.node_topics, self.node_services = set(), set()
+        self.events = []
+        rospy.Subscriber(NODE + "/events", StoneEvent, self.events.append, queue_size=100)
+
+    def tearDown(self):
+        if self.terminal:
+            self.terminal.ctrl_c()
+
+    def where(self, line):
+        return "README.md line %d: %s" % (self.line_number, line)
+
+    def run_line(self, line):
+        self.count += 1
+        return Process(line, self.folder, self.env,
+                       os.path.join(self.folder, "command_%02d.log" % self.count))
+
+    def finish(self, line, allowed=(0,)):
+        process = self.run_line(line)
+        try:
+            output = process.wait(TIMEOUT_S)
+        except subprocess.TimeoutExpired:
+            self.fail("%s: did not finish in %.0f s" % (self.where(line), TIMEOUT_S))
+        self.assertIn(process.process.returncode, allowed,
+                      "%s: exit %d:\n%s" % (self.where(line), process.process.returncode, output))
+        return output
+
+    def stream(self, line):
+        process = self.run_line(line)
+        time.sleep(STREAM_S)
+        self.assertIsNone(process.process.poll(), "%s: ended early:\n%s" %
+                          (self.where(line), process.output()))
+        return process.ctrl_c()
+
+    # ---- the kinds of line ----
+
+    def check_source(self, argv, line):
+        path = argv[1] if os.path.isabs(argv[1]) else os.path.join(self.root, argv[1])
+        self.assertTrue(os.path.exists(path), "%s: no such file" % self.where(line))
+
+    def check_help(self, argv, line):
+        output = self.finish(line)
+        self.assertTrue(output.lstrip().startswith("usage"), "%s:\n%s" % (self.where(line), output))
+
+    def check_echo_once(self, argv, line):
+        output = self.finish(line)
+        self.assertIn("---", output, "%s: no message:\n%s" % (self.where(line), output))
+        self.assertNotIn("ERROR", output, self.where(line))
+        for uri in re.findall(r'mesh_resource: "file://([^"]+)"', output):
+            self.assertTrue(os.path.exists(uri), "%s: mesh %s missing" % (self.where(line), uri))
+
+    def check_echo_stream(self, argv, line):
+        output = self.stream(line)
+        self.assertIn("---", output, "%s: no message:\n%s" % (self.where(line), output))
+        self.assertNotIn("ERROR", output, self.where(line))
+
+    def check_tf_echo(self, argv, line):
+        output = self.stream(line)
+        number = r"-?[0-9.]+(?:e[-+]?[0-9]+)?"
+        vector = r"\[%s\]" % ", ".join([number] * 3)
+        quaternion = r"\[%s\]" % ", ".join([number] * 4)
+        poses = re.findall(r"Translation: (%s)\s*- Rotation: in Quaternion (%s)" %
+                           (vector, quaternion), output)
+        self.assertGreaterEqual(len(poses), 3, "%s: fewer than 3 poses:\n%s" %
+                                (self.where(line), output))
+        distinct = len(set(poses))
+        self.assertGreaterEqual(distinct, 3, "%s: the stone does not seem to move (%d distinct "
+                                "poses of %d):\n%s" % (self.where(line), distinct, len(poses),
+                                                       output))
+
+    def check_service(self, argv, line):
+        service = argv[2]
+        self.assertTrue(service.startswith(NODE + "/"), self.where(line))
+        reason = service[len(NODE) + 1:]
+        output = self.finish(line)
+        self.assertIn("success: True", output, "%s:\n%s" % (self.where(line), output))
+        # The change starts a segment named after it, and nothing undoes it a second later.
+        time.sleep(1.0)
+        self.assertTrue(self.events, "%s: no /stone/events" % self.where(line))
+        latest = self.events[-1].reason
+        self.assertEqual(latest, reason, "%s: one second later the current segment is `%s`, "
+                         "not `%s`: the scene undid the call" % (self.where(line), latest, reason))
+
+    def check_bag_report(self, argv, line):
+        output = self.finish(line, (0, 1) if "--strict" in argv else (0,))
+        self.assertTrue(output.strip(), "%s: no output" % self.where(line))
+        for option in ("--csv", "--plot"):
+            if option in argv:
+                path = os.path.join(self.folder, argv[argv.index(option) + 1])
+                self.assertTrue(os.path.getsize(path) > 0, "%s: no %s" % (self.where(line), path))
+
+    def check_rosbag(self, argv, line):
+        output = self.finish(line)
+        if argv[1] == "check":  # a type without its Python module needs a "migration"
+            self.assertIn("does not need any migrations", output, self.where(line))
+        else:
+            self.assertIn("/stone/marker", output, self.where(line))
+
+    def check_launch_loads(self, argv, line):
+        nodes = self.finish(line.replace("roslaunch", "roslaunch --nodes", 1))
+        self.assertTrue(nodes.strip(), "%s: starts no node" % self.where(line))
+
+    def launch(self, argv, line):
+        self.stop_terminal()
+        nodes = self.finish(line.replace("roslaunch", "roslaunch --nodes", 1)).split()
+        self.terminal = self.run_line(line)
+        self.terminal_started = time.time()
+        self.launch_lines.append(line)
+        deadline = time.time() + TIMEOUT_S
+        while time.time() < deadline:
+            running = set(n for _, names in self.registrations() for n in names)
+            if all(n in running for n in nodes):
+                break
+            self.assertIsNone(self.terminal.process.poll(), "%s: ended:\n%s" %
+                              (self.where(line), self.terminal.output()))
+            time.sleep(0.2)
+        else:
+            self.fail("%s: nodes %s did not all start" % (self.where(line), nodes))
+        if NODE in nodes:
+            self.wait_for_node(line)
+            publishers, _, services = self.master.getSystemState()
+            self.node_topics |= set(t for t, n in publishers if NODE in n and t != "/rosout")
+            self.node_services |= set(s for s, n in services if NODE in n and
+                                      s.rsplit("/", 1)[1] not in ROS_SERVICES)
+
+    def wait_for_node(self, line):
+        # Started: the node announced its first segment (it needs a running clock for that).
+        deadline = time.time() + TIMEOUT_S
+        while time.time() < deadline and not any(e.reason == "start" and
+                                                  e.header.stamp.to_sec() > self.since
+                                                  for e in self.events):
+            time.sleep(0.1)
+        self.assertTrue(any(e.reason == "start" and e.header.stamp.to_sec() > self.since
+                            for e in self.events),
+                        "%s: the node published no start event in %.0f s" %
+                        (self.where(line), TIMEOUT_S))
+
+    def registrations(self):
+        """(topic or service, [node]) for every publication, subscription and service."""
+        for kind in self.master.getSystemState():
+            yield from kind
+
+    def stop_terminal(self):
+        if self.terminal:
+            remaining = LAUNCH_MIN_S - (time.time() - self.terminal_started)
+            if remaining > 0:
+                time.sleep(remaining)
+            self.terminal.ctrl_c()
+            self.terminal = None
+
+    # ---- the walk ----
+
+    def classify(self, argv):
+        if argv[0] == "source":
+            return "source"
+        if argv[0] == "roslaunch":
+            return "launch"
+        if argv[-1] in ("--help", "-h") and argv[0] == "rosrun":
+            return "help"
+        if argv[:2] == ["rostopic", "echo"]:
+            return "echo_once" if "-n" in argv else "echo_stream"
+        if argv[:2] == ["rosservice", "call"]:
+            return "service"
+        if argv[0].endswith("tf_echo") or argv[:3] == ["rosrun", "tf", "tf_echo"]:
+            return "tf_echo"
+        if argv[:3] == ["rosrun", PKG, "bag_report"]:
+            return "bag_report"
+        if argv[:2] in (["rosbag", "info"], ["rosbag", "check"]):
+            return "rosbag"
+        return None
+
+    def test_readme_commands_work_as_written(self):
+        blocks = readme_blocks(self.readme)
+        self.assertTrue(blocks, "no code blocks in README.md")
+        replaying = False
+        for language, first, lines in blocks:
+            for offset, line in enumerate(lines):
+                self.line_number = first + offset
+                if language != "bash":  # lists, layouts, output: only roslaunch lines load
+                    if line.split()[:1] == ["roslaunch"]:
+                        self.check_launch_loads(words(line), line)
+                        self.ran.append(("launch_loads", line))
+                    continue
+                argv = words(line)
+                if not argv:
+                    continue
+                kind = self.classify(argv)
+                self.assertIsNotNone(kind, "%s: a command this test does not know how to check"
+                                     % self.where(line))
+                if kind == "launch":
+                    self.since = time.time() - 1.0
+                    self.launch(argv, line)
+                    replaying = "replay.launch" in line
+                    kind = "replay" if replaying else "launch"
+                else:
+                    getattr(self, "check_" + kind)(argv, line)
+                    if kind == "tf_echo" and replaying:
+                        kind = "tf_echo_replay"
+                self.ran.append((kind, line))
+        self.stop_terminal()
+
+        kinds = [k for k, _ in self.ran]
+        for kind in ("help", "service", "echo_once", "tf_echo", "tf_echo_replay", "replay",
+                     "bag_report", "rosbag"):
+            self.assertIn(kind, kinds, "README.md has no runnable %s line" % kind)
+        helped = " ".join(line for k, line in self.ran if k == "help")
+        for exe in ("stone_node", "bag_report"):
+            self.assertIn("virtual_go %s --help" % exe, helped)
+        self.assertIn("record:=true", " ".join(line for k, line in self.ran if k == "launch"))
+        echoed = set(words(line)[-1] for k, line in self.ran if k == "echo_once")
+        self.assertTrue(self.node_topics, "no live node seen")
+        self.assertEqual(sorted(self.node_topics - echoed), [],
+                         "topics of the node without a `rostopic echo -n 1` line in README.md")
+        called = set(words(line)[2] for k, line in self.ran if k == "service")
+        self.assertEqual(sorted(self.node_services - called), [],
+                         "services of the node without a `rosservice call` line in README.md")
+
+        # After the replay: the first live launch line again must publish, whatever the
+        # replay left on the master.
+        live = next(line for line in self.launch_lines if "replay.launch" not in line)
+        self.line_number = 0
+        self.since = time.time() - 1.0
+        self.launch(words(live), live)
+        output = self.finish("rostopic echo -n 1 /tf")
+        self.assertIn("child_frame_id: \"stone\"", output, "no /tf after the replay")
+        self.stop_terminal()
+
+
+if __name__ == "__main__":
+    rospy.init_node("readme_commands_test", disable_signals=True)
+    rostest.rosrun(PKG, "readme_commands", ReadmeCommandsTest, sys.argv)
