@@ -52,7 +52,10 @@ vg_environment() {
 
 vg_configure_and_build() {
   vg_environment
-  mkdir -p "$VG_BUILD"
+  # catkin bakes the environment the run_tests target gives every test (setup_cached.sh) at
+  # configure time, with only the devel paths that exist then: without this folder a first
+  # configure leaves PYTHONPATH empty and Python tests cannot import virtual_go.msg.
+  mkdir -p "$VG_BUILD/devel/lib/python3/dist-packages"
   cmake -S "$VG_ROOT" -B "$VG_BUILD" -DPYTHON_EXECUTABLE=/usr/bin/python3 \
     -DCATKIN_ENABLE_TESTING=ON "$@" >"$VG_BUILD/configure.log" 2>&1 || {
     cat "$VG_BUILD/configure.log" >&2
