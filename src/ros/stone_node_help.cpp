@@ -59,10 +59,13 @@ Published (private names, ~ = the node's name, e.g. /stone):
   ~odom                nav_msgs/Odometry: pose in the world frame, twist in the stone frame
   ~marker              visualization_msgs/Marker (latched, every second): the lens as a
                        MESH_RESOURCE, an STL file in $ROS_HOME/virtual_go (~/.ros/virtual_go)
-  ~info                virtual_go/StoneInfo (latched): stone, model, integrator, dt, initial state
+  ~info                virtual_go/StoneInfo (latched): stone, model, integrator, dt, initial
+                       state, board and contact materials
   ~events              virtual_go/StoneEvent (latched): start of each motion segment
                        ()"
-      << join(event_reason_names(), ", ") << R"()
+      << join(event_reason_names(), ", ") << R"();
+                       with ~board/enabled every change of contact regime, its exact
+                       instant = header.stamp (rounded down to a ns) + time_offset
 
 Services (changes take effect at the next physics step, which starts a new segment):
   ~set_angular_velocity  virtual_go/SetAngularVelocity: angular_velocity rad/s, frame
