@@ -179,7 +179,13 @@ void StoneSimulation::begin_segment(EventReason reason, std::int64_t stamp_ns,
                                     UpdateResult& result) {
   if (reason != EventReason::start) ++segment_;
   segment_start_ns_ = stamp_ns;
-  result.events.push_back({stamp_ns, segment_, reason, state_, output_});
+  SegmentEvent event;
+  event.stamp_ns = stamp_ns;
+  event.segment = segment_;
+  event.reason = reason;
+  event.state = state_;
+  event.output = output_;
+  result.events.push_back(std::move(event));
 }
 
 bool StoneSimulation::auto_reset_due(std::int64_t next_ns) const {

@@ -7,6 +7,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -315,4 +317,22 @@ TEST(StoneSimulationBoard, BadBoardParametersAreRefusedByName) {
   const vg::CheckedConfig checked = vg::check_config(off);
   EXPECT_FALSE(checked.world.has_value());
   EXPECT_EQ(vg::StoneSimulation(checked).world(), nullptr);
+}
+
+// msg/StoneEvent.msg documents the reasons: the same names as the reason table, in its order.
+TEST(StoneSimulationBoard, StoneEventMessageListsEveryReason) {
+  std::string root = VG_README;
+  root.erase(root.rfind('/'));
+  std::ifstream msg(root + "/msg/StoneEvent.msg");
+  ASSERT_TRUE(msg) << root << "/msg/StoneEvent.msg";
+  std::string line, listed;
+  while (std::getline(msg, line)) {
+    if (line.rfind("string reason", 0) == 0) listed = line.substr(line.find('#') + 1);
+  }
+  std::vector<std::string> names;
+  std::istringstream words(listed);
+  for (std::string word; words >> word;) {
+    if (word != "|") names.push_back(word);
+  }
+  EXPECT_EQ(names, vg::event_reason_names());
 }
