@@ -46,14 +46,14 @@ struct Sample {
   vg::RigidBodyState state;
 };
 
-struct Run {
+struct Recording {
   std::vector<vg::SegmentEvent> events;
   std::vector<Sample> samples;  // every published state, on the dt grid
 };
 
 // Ticks every `tick_ns` from kStart up to kStart + duration_ns.
 void run(vg::StoneSimulation& sim, std::int64_t from_ns, std::int64_t to_ns, std::int64_t tick_ns,
-         Run& out) {
+         Recording& out) {
   for (std::int64_t now = from_ns; now <= to_ns; now += tick_ns) {
     const vg::UpdateResult r = sim.update(now);
     ASSERT_TRUE(r.error.empty()) << r.error;
@@ -76,7 +76,7 @@ std::vector<vg::SegmentEvent> of_reason(const std::vector<vg::SegmentEvent>& eve
 TEST(StoneSimulationBoard, FlatDropBouncesWithClosedFormTimesAndApexesThenRests) {
   vg::StoneSimulation sim(flat_drop());
   ASSERT_NE(sim.world(), nullptr);
-  Run r;
+  Recording r;
   run(sim, kStart, kStart + 600 * kMs, kMs, r);
   ASSERT_FALSE(r.events.empty());
   EXPECT_EQ(r.events.front().reason, vg::EventReason::start);
@@ -88,7 +88,9 @@ TEST(StoneSimulationBoard, FlatDropBouncesWithClosedFormTimesAndApexesThenRests)
     EXPECT_EQ(e.segment, i);
     EXPECT_GE(e.time_offset_s, 0.0);
     EXPECT_LT(e.time_offset_s, 1e-9);
-    if (i > 0) EXPECT_GE(instant_since(e, kStart), instant_since(r.events[i - 1], kStart));
+    if (i > 0) {
+      EXPECT_GE(instant_since(e, kStart), instant_since(r.events[i - 1], kStart));
+    }
   }
 
   // Impacts: times and rebound speeds of the closed form. Falling h0 takes t1 = sqrt(2 h0 / g)
@@ -156,7 +158,7 @@ TEST(StoneSimulationBoard, FlatDropBouncesWithClosedFormTimesAndApexesThenRests)
 
 TEST(StoneSimulationBoard, ARestingStoneCostsNoWorkAndIsStillPublished) {
   vg::StoneSimulation sim(flat_drop());
-  Run r;
+  Recording r;
   run(sim, kStart, kStart + 500 * kMs, kMs, r);
   ASSERT_TRUE(sim.world()->is_resting(0));
   const vg::WorldCounters before = sim.world()->counters();
@@ -184,7 +186,7 @@ TEST(StoneSimulationBoard, ARestingStoneCostsNoWorkAndIsStillPublished) {
 
 TEST(StoneSimulationBoard, CommandsWakeARestingStone) {
   vg::StoneSimulation sim(flat_drop());
-  Run r;
+  Recording r;
   run(sim, kStart, kStart + 500 * kMs, kMs, r);
   ASSERT_TRUE(sim.world()->is_resting(0));
   const vg::RigidBodyState resting = sim.state();
@@ -206,7 +208,7 @@ TEST(StoneSimulationBoard, CommandsWakeARestingStone) {
   EXPECT_NEAR(u.events[1].output.angular_velocity_world.z(), 20.0, 1e-12);
   EXPECT_FALSE(sim.world()->is_resting(0));
   // The spin decays to rest again (spinning friction), and the stone never moved off its spot.
-  Run spin;
+  Recording spin;
   run(sim, now + kMs, now + 20000 * kMs, kMs, spin);
   ASSERT_FALSE(of_reason(spin.events, vg::EventReason::rest).empty());
   EXPECT_TRUE(sim.world()->is_resting(0));
@@ -227,7 +229,7 @@ TEST(StoneSimulationBoard, AutoResetAfterRestTossesAgainAtTheFirstGridTimeAfterT
   vg::StoneConfig c = flat_drop();
   c.auto_reset_after_rest_s = 0.25;
   vg::StoneSimulation sim(c);
-  Run r;
+  Recording r;
   run(sim, kStart, kStart + 1500 * kMs, kMs, r);
   const std::vector<vg::SegmentEvent> rests = of_reason(r.events, vg::EventReason::rest);
   const std::vector<vg::SegmentEvent> resets = of_reason(r.events, vg::EventReason::auto_reset);
@@ -291,7 +293,7 @@ TEST(StoneSimulationBoard, BadBoardParametersAreRefusedByName) {
       {"~board/size", "does not fit",
        [](vg::StoneConfig& c) { c.board_size_m = Eigen::Vector3d(0.2, 0.2, 0.1); }},
       {"~contact/zeno_height", "0.001", [](vg::StoneConfig& c) { c.zeno_height_m = 0.0; }},
-      {"~auto_reset_after_rest", "1e+06",
+      {"~auto_reset_after_rest", "1000000",
        [](vg::StoneConfig& c) { c.auto_reset_after_rest_s = -1.0; }},
       {"~auto_reset_after_rest", "~dt",
        [](vg::StoneConfig& c) { c.auto_reset_after_rest_s = 0.0005; }},
