@@ -81,8 +81,8 @@ constexpr double kMaxContactLengthM = 1.0;
 void check_between(const std::string& param, double value, double lowest, double highest,
                    const std::string& unit) {
   if (!(value >= lowest && value <= highest)) {  // also refuses NaN
-    fail(param, "must be between " + format_value(lowest) + " and " + format_value(highest) +
-                    unit + ", got " + format_value(value));
+    fail(param, "must be between " + format_value(lowest) + " and " + format_value(highest) + unit +
+                    ", got " + format_value(value));
   }
 }
 
@@ -93,16 +93,15 @@ void check_material(const std::string& surface, const ContactMaterial& m) {
                 " (a sliding lens meets Painleve's paradox near 0.99)");
   check_between(prefix + "rolling_resistance", m.rolling_resistance_m, 0.0, kMaxContactLengthM,
                 " m");
-  check_between(prefix + "spinning_friction", m.spinning_friction_m, 0.0, kMaxContactLengthM,
-                " m");
+  check_between(prefix + "spinning_friction", m.spinning_friction_m, 0.0, kMaxContactLengthM, " m");
 }
 
 // A duration parameter on the dt grid: 0 = never, else longer than ~dt.
 std::int64_t check_period(const std::string& param, double value_s, double dt_s,
                           std::int64_t dt_ns) {
   if (!std::isfinite(value_s) || value_s < 0.0 || value_s > kMaxAutoResetPeriodS) {
-    fail(param, "must be between 0 (never) and " + format_value(kMaxAutoResetPeriodS) +
-                    " s, got " + format_value(value_s));
+    fail(param, "must be between 0 (never) and " + format_value(kMaxAutoResetPeriodS) + " s, got " +
+                    format_value(value_s));
   }
   const std::int64_t ns = round_to_ns(value_s);
   if (value_s > 0.0 && ns <= dt_ns) {
@@ -125,8 +124,10 @@ std::string world_parameter(const std::string& field) {
 WorldConfig checked_world(const StoneConfig& c, const Stone& stone, const MotionSetup& setup,
                           const RigidBodyState& initial) {
   if (c.integrator != "exact") {
-    fail("integrator", "must be 'exact' with ~board/enabled true (contacts are found on the "
-                       "closed-form flight), got " + quote_user_text(c.integrator));
+    fail("integrator",
+         "must be 'exact' with ~board/enabled true (contacts are found on the "
+         "closed-form flight), got " +
+             quote_user_text(c.integrator));
   }
   WorldConfig world(setup, stone.shape);
   world.board_enabled = true;
@@ -143,8 +144,9 @@ WorldConfig checked_world(const StoneConfig& c, const Stone& stone, const Motion
   world.board_material = c.board_material;
   world.table_material = c.table_material;
   if (!(c.zeno_height_m > 0.0 && c.zeno_height_m <= kMaxNodeZenoHeightM)) {
-    fail("contact/zeno_height", "must be positive and at most " + format_value(kMaxNodeZenoHeightM) +
-                                    " m, got " + format_value(c.zeno_height_m));
+    fail("contact/zeno_height", "must be positive and at most " +
+                                    format_value(kMaxNodeZenoHeightM) + " m, got " +
+                                    format_value(c.zeno_height_m));
   }
   world.zeno_height_m = c.zeno_height_m;
   // The World's own checks (a state overlapping the board or the table, a motion without a
@@ -273,9 +275,17 @@ CheckedConfig check_config(const StoneConfig& c) {
   }
   std::optional<WorldConfig> world;
   if (c.board_enabled) world = checked_world(c, *stone, setup, initial);
-  return CheckedConfig{c,     *stone,  setup,   integrator,
-                       dt_ns, dt_s,    auto_reset_ns, limits,
-                       initial, world, auto_reset_after_rest_ns};
+  return CheckedConfig{c,
+                       *stone,
+                       setup,
+                       integrator,
+                       dt_ns,
+                       dt_s,
+                       auto_reset_ns,
+                       limits,
+                       initial,
+                       world,
+                       auto_reset_after_rest_ns};
 }
 
 void validate_config(const StoneConfig& config) { check_config(config); }

@@ -63,8 +63,7 @@ void StoneSimulation::check_clear_of_board(const std::string& field,
   }
 }
 
-void StoneSimulation::split_world_time(double t_s, std::int64_t& stamp_ns,
-                                       double& offset_s) const {
+void StoneSimulation::split_world_time(double t_s, std::int64_t& stamp_ns, double& offset_s) const {
   // Relative to the epoch t_s resolves far below a nanosecond; the offset is what remains of it
   // after the whole nanoseconds, in [0, 1e-9).
   std::int64_t k = static_cast<std::int64_t>(std::floor(to_nanoseconds(t_s)));

@@ -127,8 +127,8 @@ TEST(StoneSimulationBoard, FlatDropBouncesWithClosedFormTimesAndApexesThenRests)
       const double until_next =
           vg::seconds_between(e.stamp_ns, next.stamp_ns) + next.time_offset_s - e.time_offset_s;
       if (tau <= 0.0 || tau >= until_next) continue;
-      const double z = e.state.position_world.z() + e.state.velocity_world.z() * tau -
-                       0.5 * kG * tau * tau;
+      const double z =
+          e.state.position_world.z() + e.state.velocity_world.z() * tau - 0.5 * kG * tau * tau;
       EXPECT_NEAR(s.state.position_world.z(), z, 1e-12) << "flight " << n + 1 << " at " << tau;
       EXPECT_GE(s.state.position_world.z(), z_contact - 1e-12);
       ++checked;

@@ -41,7 +41,7 @@ struct SegmentEvent {
   double time_offset_s = 0.0;
   std::uint32_t segment = 0;  // 0 at start, +1 per event
   EventReason reason = EventReason::start;
-  std::string detail;  // contact events: the World's finer cause (e.g. "slip_stop"); else ""
+  std::string detail;    // contact events: the World's finer cause (e.g. "slip_stop"); else ""
   RigidBodyState state;  // the segment's first state
   StateOutput output;    // what a message shows of it (checked finite)
 };

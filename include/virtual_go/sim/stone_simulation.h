@@ -153,7 +153,7 @@ class StoneSimulation {
   // With the board.
   std::optional<World> world_;
   std::int64_t epoch_ns_ = 0;
-  std::int64_t rest_since_ns_ = -1;  // first whole ns at rest (the rest event's, rounded up)
+  std::int64_t rest_since_ns_ = -1;       // first whole ns at rest (the rest event's, rounded up)
   std::vector<WorldEvent> world_events_;  // scratch
 };
 
