@@ -338,3 +338,30 @@ TEST(StoneSimulationBoard, StoneEventMessageListsEveryReason) {
   }
   EXPECT_EQ(names, vg::event_reason_names());
 }
+
+// Nothing the World throws leaves update(): a start state it refuses (overlapping the board,
+// which check_config would refuse) holds the simulation with the cause, and a set_state then
+// replaces the state and the drop goes on.
+TEST(StoneSimulationBoard, AStateTheWorldRefusesIsHeldNotThrown) {
+  vg::CheckedConfig checked = vg::check_config(flat_drop());
+  checked.initial_state.position_world.z() = 0.0;  // the lens's centre on the top face
+  vg::StoneSimulation sim(checked);
+  vg::UpdateResult u = sim.update(kStart);
+  EXPECT_NE(u.error.find("overlaps the board"), std::string::npos) << u.error;
+  EXPECT_TRUE(sim.held());
+  EXPECT_FALSE(sim.update(kStart + 5 * kMs).advanced);  // held: nothing to publish
+  sim.set_state(Eigen::Vector3d(0.0, 0.0, 0.0146), Eigen::Vector4d(0, 0, 0, 1),
+                Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero());
+  u = sim.update(kStart + 6 * kMs);
+  ASSERT_TRUE(u.error.empty()) << u.error;
+  EXPECT_TRUE(u.advanced);
+  EXPECT_FALSE(sim.held());
+  ASSERT_FALSE(u.events.empty());
+  EXPECT_EQ(u.events[0].reason, vg::EventReason::set_state);
+  // Falls 1 cm onto the board: the first impact after sqrt(2 h / g).
+  Recording r;
+  run(sim, kStart + 7 * kMs, kStart + 100 * kMs, kMs, r);
+  const std::vector<vg::SegmentEvent> impacts = of_reason(r.events, vg::EventReason::impact);
+  ASSERT_FALSE(impacts.empty());
+  EXPECT_NEAR(instant_since(impacts[0], kStart + 6 * kMs), std::sqrt(2.0 * 0.01 / kG), 1e-12);
+}
