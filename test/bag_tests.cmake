@@ -26,8 +26,10 @@ add_dependencies(tests test_bag_record_live)
 # The default scene (exact integrator, 1e-9 rad), and again with splitting (a dt-based bound).
 add_rostest(test/bag/bag_record.test DEPENDENCIES test_bag_record_live
   ARGS bag:=${CMAKE_CURRENT_BINARY_DIR}/bag_record_live.bag)
+# The board needs the exact integrator: splitting records the juggling scene (no board).
 add_rostest(test/bag/bag_record.test DEPENDENCIES test_bag_record_live
-  ARGS bag:=${CMAKE_CURRENT_BINARY_DIR}/bag_record_live_splitting.bag integrator:=splitting)
+  ARGS bag:=${CMAKE_CURRENT_BINARY_DIR}/bag_record_live_splitting.bag integrator:=splitting
+  config:=${PROJECT_SOURCE_DIR}/test/ros/config/juggle.yaml)
 
 # Replay: rosbag play --clock with use_sim_time gives tf2 the recorded motion (no node needed).
 add_executable(test_bag_replay EXCLUDE_FROM_ALL test/bag/test_bag_replay.cpp

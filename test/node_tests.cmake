@@ -9,6 +9,7 @@ catkin_add_gtest(node_adapter_test
   test/sim/test_state_request.cpp
   test/sim/test_state_output.cpp
   test/sim/test_stone_simulation.cpp
+  test/sim/test_stone_simulation_board.cpp
   test/sim/test_mesh_file.cpp
   test/sim/test_clock_watch.cpp)
 target_link_libraries(node_adapter_test virtual_go_sim GTest::gtest_main)
@@ -22,7 +23,8 @@ add_rostest_gtest(stone_node_rostest test/ros/stone_node_tf.test
   test/ros/test_stone_node_tf.cpp
   test/ros/test_stone_node_services.cpp
   test/ros/test_stone_node_sim_time.cpp
-  test/ros/test_stone_node_params.cpp)
+  test/ros/test_stone_node_params.cpp
+  test/ros/test_stone_node_board.cpp)
 target_link_libraries(stone_node_rostest ${catkin_LIBRARIES} GTest::gtest)
 target_compile_definitions(stone_node_rostest PRIVATE STONE_NODE_PATH="$<TARGET_FILE:stone_node>")
 add_dependencies(stone_node_rostest stone_node ${${PROJECT_NAME}_EXPORTED_TARGETS}
@@ -32,7 +34,8 @@ foreach(node_test
     stone_node_services
     stone_node_sim_time
     stone_node_params
-    stone_node_hz)
+    stone_node_hz
+    stone_node_board)
   add_rostest(test/ros/${node_test}.test DEPENDENCIES stone_node_rostest stone_node)
 endforeach()
 

@@ -41,6 +41,13 @@ class Reader {
                       "~" + name + ": must be " + expected + ", got " + describe(value));
   }
 
+  void read(const std::string& name, bool* out) const {
+    XmlRpc::XmlRpcValue v;
+    if (!get(name, v)) return;
+    if (v.getType() != XmlRpc::XmlRpcValue::TypeBoolean) fail(name, "true or false", v);
+    *out = static_cast<bool>(v);
+  }
+
   void read(const std::string& name, double* out) const {
     XmlRpc::XmlRpcValue v;
     if (!get(name, v)) return;

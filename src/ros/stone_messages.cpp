@@ -101,6 +101,19 @@ StoneInfo to_info_msg(const StoneSimulation& sim) {
   msg.initial_twist = to_world_twist_msg(initial);
   msg.max_angular_velocity = c.max_angular_velocity;
   msg.auto_reset_period = c.auto_reset_period_s;
+  // The board and materials as the simulation uses them (the parameters, checked).
+  msg.board_enabled = c.board_enabled;
+  msg.board_size = to_vector_msg(c.board_size_m);
+  msg.board_restitution = c.board_material.restitution;
+  msg.board_friction = c.board_material.friction;
+  msg.board_rolling_resistance = c.board_material.rolling_resistance_m;
+  msg.board_spinning_friction = c.board_material.spinning_friction_m;
+  msg.table_restitution = c.table_material.restitution;
+  msg.table_friction = c.table_material.friction;
+  msg.table_rolling_resistance = c.table_material.rolling_resistance_m;
+  msg.table_spinning_friction = c.table_material.spinning_friction_m;
+  msg.zeno_height = c.zeno_height_m;
+  msg.auto_reset_after_rest = c.auto_reset_after_rest_s;
   return msg;
 }
 
@@ -108,8 +121,10 @@ StoneEvent to_event_msg(const SegmentEvent& event, const std::string& world_fram
   StoneEvent msg;
   msg.header.stamp = to_ros_time(event.stamp_ns);
   msg.header.frame_id = world_frame;
+  msg.time_offset = event.time_offset_s;
   msg.segment = event.segment;
   msg.reason = event_reason_name(event.reason);
+  msg.detail = event.detail;
   msg.pose = to_pose_msg(event.output);
   msg.twist = to_world_twist_msg(event.output);
   msg.angular_momentum = to_vector_msg(event.output.angular_momentum_world);

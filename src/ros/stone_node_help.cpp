@@ -11,6 +11,27 @@
 namespace virtual_go {
 namespace {
 
+// The event reasons, wrapped below the ~events line.
+std::string reason_lines() {
+  constexpr std::size_t kIndent = 23, kWidth = 92;
+  const std::vector<std::string> names = event_reason_names();
+  std::string out;
+  std::size_t column = kIndent + 8;  // after "reason: "
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    const std::string word = names[i] + (i + 1 < names.size() ? "," : "");
+    if (i > 0 && column + 1 + word.size() > kWidth) {
+      out += "\n" + std::string(kIndent, ' ');
+      column = kIndent;
+    } else if (i > 0) {
+      out += " ";
+      ++column;
+    }
+    out += word;
+    column += word.size();
+  }
+  return out;
+}
+
 // One parameter: name and unit in columns, then the help and default wrapped at word
 // boundaries to 100 columns (the default is never split).
 std::string parameter_line(const ParameterInfo& p) {
@@ -59,10 +80,13 @@ Published (private names, ~ = the node's name, e.g. /stone):
   ~odom                nav_msgs/Odometry: pose in the world frame, twist in the stone frame
   ~marker              visualization_msgs/Marker (latched, every second): the lens as a
                        MESH_RESOURCE, an STL file in $ROS_HOME/virtual_go (~/.ros/virtual_go)
-  ~info                virtual_go/StoneInfo (latched): stone, model, integrator, dt, initial state
-  ~events              virtual_go/StoneEvent (latched): start of each motion segment
-                       ()"
-      << join(event_reason_names(), ", ") << R"()
+  ~info                virtual_go/StoneInfo (latched): stone, model, integrator, dt, initial
+                       state, board and contact materials
+  ~events              virtual_go/StoneEvent (latched): start of each motion segment, by
+                       reason: )"
+      << reason_lines() << R"(
+                       (with ~board/enabled every change of contact regime); its exact
+                       instant = header.stamp (rounded down to a ns) + time_offset
 
 Services (changes take effect at the next physics step, which starts a new segment):
   ~set_angular_velocity  virtual_go/SetAngularVelocity: angular_velocity rad/s, frame

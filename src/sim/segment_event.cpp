@@ -15,6 +15,13 @@ const std::vector<std::pair<EventReason, std::string>>& reasons() {
       {EventReason::set_state, "set_state"},
       {EventReason::set_angular_velocity, "set_angular_velocity"},
       {EventReason::time_jump, "time_jump"},
+      {EventReason::impact, "impact"},
+      {EventReason::slide, "slide"},
+      {EventReason::roll, "roll"},
+      {EventReason::rim, "rim"},
+      {EventReason::lift_off, "lift_off"},
+      {EventReason::rest, "rest"},
+      {EventReason::wake, "wake"},
   };
   return table;
 }

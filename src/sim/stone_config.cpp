@@ -7,6 +7,7 @@
 
 #include "virtual_go/common/sim_time.h"
 #include "virtual_go/flight/integrator_registry.h"
+#include "virtual_go/world/world.h"
 
 namespace virtual_go {
 namespace {
@@ -72,6 +73,94 @@ auto named(const std::string& param, Lookup&& lookup) {
   } catch (const InvalidArgument& e) {
     fail(param, e.what());
   }
+}
+
+// Largest rolling-resistance or spinning-friction length: far beyond a stone's size.
+constexpr double kMaxContactLengthM = 1.0;
+
+void check_between(const std::string& param, double value, double lowest, double highest,
+                   const std::string& unit) {
+  if (!(value >= lowest && value <= highest)) {  // also refuses NaN
+    fail(param, "must be between " + format_value(lowest) + " and " + format_value(highest) + unit +
+                    ", got " + format_value(value));
+  }
+}
+
+void check_material(const std::string& surface, const ContactMaterial& m) {
+  const std::string prefix = "contact/" + surface + "/";
+  check_between(prefix + "restitution", m.restitution, 0.0, 1.0, "");
+  check_between(prefix + "friction", m.friction, 0.0, kMaxNodeFriction,
+                " (a sliding lens meets Painleve's paradox near 0.99)");
+  check_between(prefix + "rolling_resistance", m.rolling_resistance_m, 0.0, kMaxContactLengthM,
+                " m");
+  check_between(prefix + "spinning_friction", m.spinning_friction_m, 0.0, kMaxContactLengthM, " m");
+}
+
+// A duration parameter on the dt grid: 0 = never, else longer than ~dt.
+std::int64_t check_period(const std::string& param, double value_s, double dt_s,
+                          std::int64_t dt_ns) {
+  if (!std::isfinite(value_s) || value_s < 0.0 || value_s > kMaxAutoResetPeriodS) {
+    fail(param, "must be between 0 (never) and " + format_value(kMaxAutoResetPeriodS) + " s, got " +
+                    format_value(value_s));
+  }
+  const std::int64_t ns = round_to_ns(value_s);
+  if (value_s > 0.0 && ns <= dt_ns) {
+    fail(param, "must be 0 (never) or longer than ~dt " + format_value(dt_s) + " s, got " +
+                    format_value(value_s) + " s");
+  }
+  return ns;
+}
+
+// The parameter behind a WorldConfig field the core names (validate_world_config, World).
+std::string world_parameter(const std::string& field) {
+  if (field == "state") return "initial/position";
+  if (field == "inertia") return "model";
+  if (field == "gravity") return "gravity";
+  if (field.compare(0, 8, "contact/") == 0 || field == "board/size") return field;
+  return "board/enabled";
+}
+
+// ~board/* and ~contact/* -> the world, checked, with the initial state clear of the board.
+WorldConfig checked_world(const StoneConfig& c, const Stone& stone, const MotionSetup& setup,
+                          const RigidBodyState& initial) {
+  if (c.integrator != "exact") {
+    fail("integrator",
+         "must be 'exact' with ~board/enabled true (contacts are found on the "
+         "closed-form flight), got " +
+             quote_user_text(c.integrator));
+  }
+  WorldConfig world(setup, stone.shape);
+  world.board_enabled = true;
+  world.board.size_x_m = c.board_size_m.x();
+  world.board.size_y_m = c.board_size_m.y();
+  world.board.thickness_m = c.board_size_m.z();
+  try {
+    validate_board("~board/size", world.board);
+  } catch (const InvalidArgument& e) {
+    throw ConfigError("~board/size", e.what());
+  }
+  check_material("board", c.board_material);
+  check_material("table", c.table_material);
+  world.board_material = c.board_material;
+  world.table_material = c.table_material;
+  if (!(c.zeno_height_m > 0.0 && c.zeno_height_m <= kMaxNodeZenoHeightM)) {
+    fail("contact/zeno_height", "must be positive and at most " +
+                                    format_value(kMaxNodeZenoHeightM) + " m, got " +
+                                    format_value(c.zeno_height_m));
+  }
+  world.zeno_height_m = c.zeno_height_m;
+  // The World's own checks (a state overlapping the board or the table, a motion without a
+  // closed form) under the parameter's name.
+  try {
+    const World probe(world, initial, 0.0);
+  } catch (const InvalidArgument& e) {
+    // Its message starts with the core's field name: say the parameter instead.
+    std::string what = e.what();
+    const std::string core_prefix = e.field() + ": ";
+    if (what.compare(0, core_prefix.size(), core_prefix) == 0) what.erase(0, core_prefix.size());
+    fail(world_parameter(e.field()), what);
+  }
+  return world;
 }
 
 }  // namespace
@@ -156,19 +245,12 @@ CheckedConfig check_config(const StoneConfig& c) {
     for (const std::string& color : colors) quoted.push_back("'" + color + "'");
     fail("stone/color", "must be " + join(quoted, " or ") + ", got " + quote_user_text(c.color));
   }
-  if (!std::isfinite(c.auto_reset_period_s) || c.auto_reset_period_s < 0.0 ||
-      c.auto_reset_period_s > kMaxAutoResetPeriodS) {
-    fail("auto_reset_period", "must be between 0 (never) and " +
-                                  format_value(kMaxAutoResetPeriodS) + " s, got " +
-                                  format_value(c.auto_reset_period_s));
-  }
-  const std::int64_t auto_reset_ns = round_to_ns(c.auto_reset_period_s);
   // A segment is reset at the first step at which its age reaches the period: one of ~dt or
   // less would reset the stone at every step, so it could never move.
-  if (c.auto_reset_period_s > 0.0 && auto_reset_ns <= dt_ns) {
-    fail("auto_reset_period", "must be 0 (never) or longer than ~dt " + format_value(c.dt_s) +
-                                  " s, got " + format_value(c.auto_reset_period_s) + " s");
-  }
+  const std::int64_t auto_reset_ns =
+      check_period("auto_reset_period", c.auto_reset_period_s, c.dt_s, dt_ns);
+  const std::int64_t auto_reset_after_rest_ns =
+      check_period("auto_reset_after_rest", c.auto_reset_after_rest_s, c.dt_s, dt_ns);
   check_frame("world_frame", c.world_frame);
   check_frame("stone_frame", c.stone_frame);
   if (c.world_frame == c.stone_frame) {
@@ -191,7 +273,19 @@ CheckedConfig check_config(const StoneConfig& c) {
   } catch (const InvalidArgument& e) {
     throw ConfigError(e.field(), e.what());
   }
-  return CheckedConfig{c, *stone, setup, integrator, dt_ns, dt_s, auto_reset_ns, limits, initial};
+  std::optional<WorldConfig> world;
+  if (c.board_enabled) world = checked_world(c, *stone, setup, initial);
+  return CheckedConfig{c,
+                       *stone,
+                       setup,
+                       integrator,
+                       dt_ns,
+                       dt_s,
+                       auto_reset_ns,
+                       limits,
+                       initial,
+                       world,
+                       auto_reset_after_rest_ns};
 }
 
 void validate_config(const StoneConfig& config) { check_config(config); }

@@ -36,6 +36,7 @@ std::string list_text(const Eigen::Matrix<double, N, 1>& v) {
   return "[" + join(parts, ", ") + "]";
 }
 
+std::string value_text(const bool* v) { return *v ? "true" : "false"; }
 std::string value_text(const double* v) { return format_value(*v); }
 std::string value_text(const std::optional<double>* v) { return *v ? format_value(**v) : ""; }
 std::string value_text(const std::optional<int>* v) { return *v ? std::to_string(**v) : ""; }
@@ -106,6 +107,46 @@ std::vector<BoundParameter> bind_parameters(StoneConfig& c) {
       {{"auto_reset_period", "s", "",
         "reset when a segment is this old; 0 = never, else longer than ~dt"},
        &c.auto_reset_period_s},
+      {{"auto_reset_after_rest", "s", "",
+        "with the board: reset once the stone has rested this long; 0 = never, else longer "
+        "than ~dt"},
+       &c.auto_reset_after_rest_s},
+      // The board and the contact laws (docs/physics.md, "World", "Contact materials").
+      {{"board/enabled", "", "",
+        "true: a Go board (top face at z = 0, centred on the origin) on a table; needs "
+        "~integrator exact"},
+       &c.board_enabled},
+      {{"board/size", "m", "", "[x, y, thickness] of the board; the table is at z = -thickness"},
+       &c.board_size_m},
+      {{"contact/board/restitution", "", "",
+        "stone on board: Stronge's energetic coefficient e*, 0 to 1 (unmeasured placeholder)"},
+       &c.board_material.restitution},
+      {{"contact/board/friction", "", "",
+        "stone on board: Coulomb mu, 0 to " + format_value(kMaxNodeFriction) +
+            " (unmeasured placeholder)"},
+       &c.board_material.friction},
+      {{"contact/board/rolling_resistance", "m", "",
+        "stone on board: rolling couple at most this times the normal force (unmeasured "
+        "placeholder)"},
+       &c.board_material.rolling_resistance_m},
+      {{"contact/board/spinning_friction", "m", "",
+        "stone on board: spinning couple at most this times the normal force (unmeasured "
+        "placeholder)"},
+       &c.board_material.spinning_friction_m},
+      {{"contact/table/restitution", "", "", "stone on table: as ~contact/board/restitution"},
+       &c.table_material.restitution},
+      {{"contact/table/friction", "", "", "stone on table: as ~contact/board/friction"},
+       &c.table_material.friction},
+      {{"contact/table/rolling_resistance", "m", "",
+        "stone on table: as ~contact/board/rolling_resistance"},
+       &c.table_material.rolling_resistance_m},
+      {{"contact/table/spinning_friction", "m", "",
+        "stone on table: as ~contact/board/spinning_friction"},
+       &c.table_material.spinning_friction_m},
+      {{"contact/zeno_height", "m", "",
+        "rebound height below which bouncing ends in sustained contact; at most " +
+            format_value(kMaxNodeZenoHeightM)},
+       &c.zeno_height_m},
       {{"world_frame", "", "", "tf frame of the world"}, &c.world_frame},
       {{"stone_frame", "", "", "tf frame of the stone (its body frame)"}, &c.stone_frame},
   };

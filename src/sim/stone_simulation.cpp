@@ -16,6 +16,26 @@ constexpr std::int64_t kMaxLagNs = kNanosecondsPerSecond;
 
 constexpr char kApplied[] = "applied at the next physics step";
 
+EventReason event_reason(WorldEventKind kind) {
+  switch (kind) {
+    case WorldEventKind::impact:
+      return EventReason::impact;
+    case WorldEventKind::slide:
+      return EventReason::slide;
+    case WorldEventKind::roll:
+      return EventReason::roll;
+    case WorldEventKind::rim:
+      return EventReason::rim;
+    case WorldEventKind::lift_off:
+      return EventReason::lift_off;
+    case WorldEventKind::rest:
+      return EventReason::rest;
+    case WorldEventKind::wake:
+      return EventReason::wake;
+  }
+  throw std::logic_error("unknown world event kind");
+}
+
 }  // namespace
 
 StoneSimulation::StoneSimulation(const StoneConfig& config)
@@ -26,7 +46,75 @@ StoneSimulation::StoneSimulation(CheckedConfig checked)
       integrator_(checked_.integrator->make(*checked_.integrator, checked_.setup)),
       clock_(checked_.dt_ns, std::max(kMaxLagNs, 2 * checked_.dt_ns)),
       state_(checked_.initial_state),
-      output_(state_output(checked_.setup.model, checked_.initial_state)) {}
+      output_(state_output(checked_.setup.model, checked_.initial_state)) {
+  // No stone until the start: a state the World refuses (tests reach states the checks refuse)
+  // then holds the simulation instead of escaping from here.
+  if (checked_.world) world_.emplace(*checked_.world, std::vector<RigidBodyState>{}, 0.0);
+}
+
+void StoneSimulation::check_clear_of_board(const std::string& field,
+                                           const RigidBodyState& state) const {
+  if (!world_) return;
+  const BoardContact contact = world_->board_distance().nearest(state);
+  const double tolerance = world_->config().options.time_of_impact.touch_tolerance_m;
+  if (contact.lens.gap_m < -tolerance) {
+    throw InvalidArgument(field, field + ": the stone would overlap the " +
+                                     (contact.on_table() ? std::string("table") : "board") +
+                                     " by " + format_value(-contact.lens.gap_m) + " m, at most " +
+                                     format_value(tolerance) + " m is allowed");
+  }
+}
+
+void StoneSimulation::split_world_time(double t_s, std::int64_t& stamp_ns, double& offset_s) const {
+  // Relative to the epoch t_s resolves far below a nanosecond; the offset is what remains of it
+  // after the whole nanoseconds, in [0, 1e-9).
+  std::int64_t k = static_cast<std::int64_t>(std::floor(to_nanoseconds(t_s)));
+  double offset = t_s - to_seconds(k);
+  while (offset < 0.0) offset = t_s - to_seconds(--k);
+  while (offset >= 1e-9) offset = t_s - to_seconds(++k);
+  stamp_ns = epoch_ns_ + k;
+  offset_s = offset;
+}
+
+SegmentEvent StoneSimulation::segment_event(const WorldEvent& event) const {
+  SegmentEvent out;
+  split_world_time(event.time_s, out.stamp_ns, out.time_offset_s);
+  out.reason = event_reason(event.kind);
+  out.detail = world_event_detail_name(event.detail);
+  out.state = event.state;
+  out.output = state_output(checked_.setup.model, event.state);  // throws if not finite
+  return out;
+}
+
+void StoneSimulation::commit_events(std::vector<SegmentEvent>& events, UpdateResult& result) {
+  for (SegmentEvent& event : events) {
+    if (event.reason != EventReason::start) ++segment_;
+    event.segment = segment_;
+    if (event.reason == EventReason::rest) {
+      rest_since_ns_ = event.stamp_ns + (event.time_offset_s > 0.0 ? 1 : 0);
+    } else {
+      rest_since_ns_ = -1;
+    }
+    // The age ~auto_reset_period counts is that of the motion given from outside.
+    if (event.reason < EventReason::impact) segment_start_ns_ = event.stamp_ns;
+    result.events.push_back(std::move(event));
+  }
+}
+
+void StoneSimulation::restart_world(std::int64_t stamp_ns, UpdateResult& result) {
+  if (!world_) return;
+  epoch_ns_ = stamp_ns;
+  rest_since_ns_ = -1;
+  world_->reset({state_}, 0.0);
+  world_events_.clear();
+  world_->advance_to(0.0, world_events_);
+  std::vector<SegmentEvent> events;
+  for (const WorldEvent& e : world_events_) events.push_back(segment_event(e));
+  commit_events(events, result);
+  state_ = world_->state(0);
+  output_ = state_output(checked_.setup.model, state_);
+  output_stale_ = false;
+}
 
 std::string StoneSimulation::answer() {
   if (failure_reported_) return kApplied;
@@ -75,6 +163,7 @@ std::string StoneSimulation::set_state(const Eigen::Vector3d& position_world,
   const RigidBodyState s = state_from_request(
       {"pose.position", "pose.orientation", "twist.linear", "twist.angular"}, checked_.setup.model,
       position_world, orientation_xyzw, velocity_world, angular_velocity_world, checked_.limits);
+  check_clear_of_board("pose.position", s);
   enqueue({EventReason::set_state, s, {}, {}});
   return answer();
 }
@@ -91,14 +180,25 @@ void StoneSimulation::begin_segment(EventReason reason, std::int64_t stamp_ns,
                                     UpdateResult& result) {
   if (reason != EventReason::start) ++segment_;
   segment_start_ns_ = stamp_ns;
-  result.events.push_back({stamp_ns, segment_, reason, state_, output_});
+  SegmentEvent event;
+  event.stamp_ns = stamp_ns;
+  event.segment = segment_;
+  event.reason = reason;
+  event.state = state_;
+  event.output = output_;
+  result.events.push_back(std::move(event));
+}
+
+bool StoneSimulation::auto_reset_due(std::int64_t next_ns) const {
+  const std::int64_t auto_reset_ns = checked_.auto_reset_ns;
+  if (auto_reset_ns > 0 && next_ns - segment_start_ns_ >= auto_reset_ns) return true;
+  const std::int64_t after_rest_ns = checked_.auto_reset_after_rest_ns;
+  return world_ && after_rest_ns > 0 && rest_since_ns_ >= 0 &&
+         next_ns - rest_since_ns_ >= after_rest_ns;
 }
 
 bool StoneSimulation::replacement_due() const {
-  const std::int64_t auto_reset_ns = checked_.auto_reset_ns;
-  if (auto_reset_ns > 0 && clock_.next_time_ns() - segment_start_ns_ >= auto_reset_ns) {
-    return true;
-  }
+  if (auto_reset_due(clock_.next_time_ns())) return true;
   return std::any_of(pending_.begin(), pending_.end(),
                      [](const Change& change) { return change.replaces_state(); });
 }
@@ -143,6 +243,7 @@ void StoneSimulation::advance_to(std::int64_t now_ns, UpdateResult& result) {
       start_ns_ = now_ns;
       replace_state(checked_.initial_state);
       begin_segment(EventReason::start, now_ns, result);
+      restart_world(now_ns, result);
       break;
     case SimClock::Action::jump_back:
     case SimClock::Action::jump_forward:
@@ -153,6 +254,7 @@ void StoneSimulation::advance_to(std::int64_t now_ns, UpdateResult& result) {
       // publishing it would present the stale state as new.
       if (held_) return;
       begin_segment(EventReason::time_jump, now_ns, result);
+      restart_world(now_ns, result);
       break;
     case SimClock::Action::advance:
       for (std::int64_t i = 0; i < plan.steps; ++i) {
@@ -191,6 +293,10 @@ void StoneSimulation::advance_to(std::int64_t now_ns, UpdateResult& result) {
 }
 
 void StoneSimulation::step(UpdateResult& result) {
+  if (world_) {
+    step_world(result);
+    return;
+  }
   const std::int64_t next_ns = clock_.next_time_ns();
   const std::int64_t auto_reset_ns = checked_.auto_reset_ns;
   const bool auto_reset = auto_reset_ns > 0 && next_ns - segment_start_ns_ >= auto_reset_ns;
@@ -237,6 +343,76 @@ void StoneSimulation::step(UpdateResult& result) {
     flight_cache_.invalidate();  // the integrator must not continue the old motion
     begin_segment(*reason, next_ns, result);
   }
+}
+
+}  // namespace virtual_go
+
+namespace virtual_go {
+
+void StoneSimulation::step_world(UpdateResult& result) {
+  const std::int64_t next_ns = clock_.next_time_ns();
+  const bool auto_reset = auto_reset_due(next_ns);
+  World& world = *world_;
+  if (!held_ && !auto_reset && pending_.empty() && world.is_resting(0)) {
+    // At rest with nothing due: no work, the state and its outputs stay bit for bit.
+    clock_.step();
+    return;
+  }
+  const double t_s = seconds_between(epoch_ns_, next_ns);
+  const MotionModel& model = checked_.setup.model;
+  // Events up to t_s (the World moves on; if anything below throws, the state is held and the
+  // World restarted by the replacement that ends the hold).
+  world_events_.clear();
+  if (!held_) world.advance_to(t_s, world_events_);
+  std::vector<SegmentEvent> events;
+  for (const WorldEvent& e : world_events_) events.push_back(segment_event(e));
+  // The changes due at this step, in order, as in step().
+  RigidBodyState next = held_ ? state_ : world.state(0);
+  std::optional<EventReason> reason;
+  if (auto_reset) {
+    next = checked_.initial_state;
+    reason = EventReason::auto_reset;
+  }
+  for (const Change& change : pending_) {
+    if (change.replaces_state()) {
+      next = change.state;
+    } else {
+      const Eigen::Vector3d omega_world =
+          change.frame == RequestFrame::body
+              ? rotate_without_overflow(next.orientation, change.omega)
+              : change.omega;
+      next = with_angular_velocity_world(model, next, omega_world);
+    }
+    reason = change.reason;
+  }
+  if (reason) {
+    SegmentEvent command;
+    command.stamp_ns = next_ns;
+    command.reason = *reason;
+    command.state = next;
+    command.output = state_output(model, next);
+    world_events_.clear();
+    if (held_) {
+      // The World may have failed half-way: start it afresh from the replacement.
+      world.reset({next}, t_s);
+      world.advance_to(t_s, world_events_);
+    } else {
+      world.set_state(0, next, t_s, world_events_);  // a resting stone wakes first
+    }
+    std::size_t i = 0;
+    for (; i < world_events_.size() && world_events_[i].kind == WorldEventKind::wake; ++i) {
+      events.push_back(segment_event(world_events_[i]));
+    }
+    events.push_back(command);
+    for (; i < world_events_.size(); ++i) events.push_back(segment_event(world_events_[i]));
+  }
+  const bool moved = !events.empty() || !world.is_resting(0);
+  clock_.step();
+  pending_.clear();
+  commit_events(events, result);
+  state_ = world.state(0);
+  // Resting since before this step: the outputs already show this very state.
+  if (moved) output_stale_ = true;
 }
 
 }  // namespace virtual_go

@@ -6,14 +6,17 @@
 #include <Eigen/Core>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "virtual_go/body/rigid_body.h"
 #include "virtual_go/common/validation.h"
+#include "virtual_go/contact/material.h"
 #include "virtual_go/flight/integrator.h"
 #include "virtual_go/go/stone.h"
 #include "virtual_go/sim/state_request.h"
+#include "virtual_go/world/world_config.h"
 
 namespace virtual_go {
 
@@ -33,6 +36,12 @@ constexpr std::int64_t kMinDtNs = 1000;  // 1 us: smaller steps cannot keep up w
 constexpr double kMinRateHz = 0.001;
 constexpr double kMaxRateHz = 10000.0;
 constexpr double kMaxAutoResetPeriodS = 1e6;
+// ~contact/*/friction bound of the node. A sliding lens can meet Painleve's paradox (no
+// consistent contact force) above mu ~ 0.99 (docs/physics.md, "Contact materials"); the core
+// takes any mu for impacts, the node stays clear of the paradox.
+constexpr double kMaxNodeFriction = 0.9;
+// Largest ~contact/zeno_height: above it the cut-off would remove visible bounces.
+constexpr double kMaxNodeZenoHeightM = 1e-3;
 
 // Hard caps on the plausibility bounds below (a bound parameter beyond its cap is refused).
 // They make every number the node computes finite, whatever is requested within the bounds:
@@ -84,6 +93,13 @@ struct StoneConfig {
   double min_width = 0.001;             // m, lens diameter
   double max_width = 1.0;               // m
   double auto_reset_period_s = 0.0;     // 0 = never
+  // The board and the table (docs/physics.md, "World"); off: the stone flies in a void.
+  bool board_enabled = false;
+  Eigen::Vector3d board_size_m = Eigen::Vector3d(0.4242, 0.4545, 0.1515);  // x, y, thickness
+  ContactMaterial board_material;  // unmeasured placeholders (contact/material.h)
+  ContactMaterial table_material;
+  double zeno_height_m = 1e-6;           // rebounds lower than this end the bouncing
+  double auto_reset_after_rest_s = 0.0;  // reset once resting this long; 0 = never
   std::string world_frame = "world";
   std::string stone_frame = "stone";
 };
@@ -101,6 +117,10 @@ struct CheckedConfig {
   std::int64_t auto_reset_ns;  // 0 = never
   RequestLimits limits;
   RigidBodyState initial_state;
+  // With ~board/enabled: the world the stone lives in (checked, the initial state clear of the
+  // board), and the rest time after which it is reset on the dt grid (0 = never).
+  std::optional<WorldConfig> world;
+  std::int64_t auto_reset_after_rest_ns = 0;
 };
 
 // dt in seconds -> whole nanoseconds; throws ConfigError ("~dt: ...") when dt is not positive,

@@ -22,7 +22,7 @@ struct ParameterInfo {
 };
 
 // The StoneConfig field a parameter sets, by its type.
-using ParameterField = std::variant<double*, std::optional<double>*, std::optional<int>*,
+using ParameterField = std::variant<bool*, double*, std::optional<double>*, std::optional<int>*,
                                     std::string*, Eigen::Vector3d*, Eigen::Vector4d*>;
 
 struct BoundParameter {

@@ -1,11 +1,20 @@
 // The stone node without ROS: a checked configuration -> core objects, a simulated clock on a
 // fixed grid of whole nanoseconds, and the changes requested from outside. The node calls
 // update() with ROS time on every timer tick and publishes what it returns.
+//
+// With ~board/enabled the stone lives in a World (world/world.h): every grid time is a
+// World::advance_to, each World event becomes a segment event with the exact state at its
+// instant (stamp = the instant rounded down to a whole ns, plus time_offset_s), and commands are
+// World state replacements (a resting stone wakes). The World's time line is seconds since
+// epoch_ns() (the start, or the last time jump): absolute ROS times as doubles (~1.7e9 s) would
+// resolve only 2e-7 s. A resting stone costs nothing: the World is not called while it rests
+// and no change is due, and its state and outputs stay bit for bit.
 #pragma once
 
 #include <cstdint>
 #include <deque>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -19,6 +28,7 @@
 #include "virtual_go/sim/state_output.h"
 #include "virtual_go/sim/state_request.h"
 #include "virtual_go/sim/stone_config.h"
+#include "virtual_go/world/world.h"
 
 namespace virtual_go {
 
@@ -85,6 +95,10 @@ class StoneSimulation {
   std::int64_t time_ns() const { return clock_.time_ns(); }
   // True after a failed step until a change replaces the state.
   bool held() const { return held_; }
+  // With the board: the World (its counters show the work done), else nullptr.
+  const World* world() const { return world_ ? &*world_ : nullptr; }
+  // Simulated time (ns) of the World's time 0.
+  std::int64_t epoch_ns() const { return epoch_ns_; }
   std::size_t pending_requests() const { return pending_.size(); }
 
  private:
@@ -98,6 +112,19 @@ class StoneSimulation {
 
   void advance_to(std::int64_t now_ns, UpdateResult& result);
   void step(UpdateResult& result);
+  void step_world(UpdateResult& result);
+  // With the board: the World restarted with state_ at stamp_ns (its new epoch), and its events
+  // at that instant (a stone placed on the board comes to rest) reported.
+  void restart_world(std::int64_t stamp_ns, UpdateResult& result);
+  // A World event -> a segment event (not yet numbered), checked finite; throws otherwise.
+  SegmentEvent segment_event(const WorldEvent& event) const;
+  // Numbers and appends events built by segment_event / make_event; tracks rest.
+  void commit_events(std::vector<SegmentEvent>& events, UpdateResult& result);
+  // The instant of a World time as a stamp (rounded down to a whole ns) and its offset.
+  void split_world_time(double t_s, std::int64_t& stamp_ns, double& offset_s) const;
+  // Refuses (InvalidArgument naming `field`) a state overlapping the board or the table.
+  void check_clear_of_board(const std::string& field, const RigidBodyState& state) const;
+  bool auto_reset_due(std::int64_t next_ns) const;
   // A change due at the next step replaces the state (reset, set_state, auto reset).
   bool replacement_due() const;
   // The state was replaced from outside the integration: a new segment's first state.
@@ -123,6 +150,11 @@ class StoneSimulation {
   std::string failure_;           // why, for requests
   bool failure_reported_ = true;  // the next request's answer has carried failure_
   std::deque<Change> pending_;
+  // With the board.
+  std::optional<World> world_;
+  std::int64_t epoch_ns_ = 0;
+  std::int64_t rest_since_ns_ = -1;       // first whole ns at rest (the rest event's, rounded up)
+  std::vector<WorldEvent> world_events_;  // scratch
 };
 
 }  // namespace virtual_go
