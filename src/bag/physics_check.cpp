@@ -96,6 +96,7 @@ std::vector<SegmentPlan> plan_segments(const std::vector<OdomSample>& odom,
   auto start_at_event = [&](std::size_t sample_index) {
     SegmentPlan p;
     p.reason = events[next_event].reason;
+    p.detail = events[next_event].detail;
     p.from_event = true;
     p.event_index = next_event;
     p.start_ns = events[next_event].stamp_ns;
@@ -258,7 +259,7 @@ PhysicsResult check_physics(const RecordingInfo& info, const std::vector<OdomSam
       if (seg.kind == SegmentKind::flight) {
         seg.jellett_conserved = true;
       } else if (seg.kind == SegmentKind::contact) {
-        const std::string& detail = seg.plan.from_event ? events[seg.plan.event_index].detail : "";
+        const std::string& detail = seg.plan.detail;
         const bool on_table = board->nearest(*start).on_table();
         const double l_r =
             on_table ? info.table_rolling_resistance_m : info.board_rolling_resistance_m;

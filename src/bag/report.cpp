@@ -134,7 +134,7 @@ void print_report(std::ostream& out, const Report& report) {
                                      : "from " + rec.events_topic)
         << "):\n";
     out << "  " << std::right << std::setw(3) << "#"
-        << "  " << std::left << std::setw(22) << "reason" << std::right << std::setw(14)
+        << "  " << std::left << std::setw(34) << "reason" << std::right << std::setw(14)
         << "start s" << std::setw(10) << "length s" << std::setw(8) << "odom" << std::setw(11)
         << "|w| rad/s" << std::setw(11) << "orient rad" << std::setw(11) << "pos m" << std::setw(11)
         << "energy" << std::setw(11) << "momentum" << std::setw(11) << "||q|-1|" << std::setw(11)
@@ -142,10 +142,15 @@ void print_report(std::ostream& out, const Report& report) {
         << "\n";
     for (std::size_t k = 0; k < p.segments.size(); ++k) {
       const SegmentResult& s = p.segments[k];
-      const std::string reason = s.kind == SegmentKind::flight
-                                     ? s.plan.reason
-                                     : s.plan.reason + " (" + segment_kind_name(s.kind) + ")";
-      out << "  " << std::right << std::setw(3) << k << "  " << std::left << std::setw(22) << reason
+      // "slide (contact, edge_contact)", "lift_off (separation)", "start".
+      std::string reason = s.plan.reason;
+      const bool detailed = !s.plan.detail.empty() && s.plan.detail != s.plan.reason;
+      if (s.kind != SegmentKind::flight) {
+        reason += " (" + segment_kind_name(s.kind) + (detailed ? ", " + s.plan.detail : "") + ")";
+      } else if (detailed) {
+        reason += " (" + s.plan.detail + ")";
+      }
+      out << "  " << std::right << std::setw(3) << k << "  " << std::left << std::setw(34) << reason
           << std::right << std::setw(14) << short_stamp_text(s.plan.start_ns) << std::setw(10)
           << fixed(s.duration_s, 3) << std::setw(8) << s.samples << std::setw(11)
           << fixed(s.max_angular_speed, 3);

@@ -28,6 +28,7 @@ std::string segment_kind_name(SegmentKind kind);  // "flight", "contact", "rest"
 // Which odom samples belong to one segment and where its prediction starts.
 struct SegmentPlan {
   std::string reason;           // the event's reason, or "first odom" without an event
+  std::string detail;           // the event's detail (contact events), else empty
   bool from_event = false;      // true: starts at events[event_index], else at odom[first]
   std::size_t event_index = 0;  // valid when from_event
   std::int64_t start_ns = 0;    // sim time of the segment's first state, rounded down to a ns
