@@ -147,6 +147,7 @@ const char* non_finite_field(const SegmentEvent& event) {
   if (!event.orientation.coeffs().allFinite()) return "orientation";
   if (!event.velocity_world.allFinite()) return "linear velocity";
   if (!event.angular_momentum_world.allFinite()) return "angular momentum";
+  if (!std::isfinite(event.time_offset_s)) return "time offset";
   return nullptr;
 }
 

@@ -54,7 +54,7 @@ std::vector<SegmentPlan> plan_segments(const std::vector<OdomSample>& odom,
 SegmentKind segment_kind(const std::vector<SegmentEvent>& events, std::size_t index);
 
 // The first field of a sample holding a NaN or infinity ("position", "orientation",
-// "linear velocity", "angular velocity"; events: "angular momentum"), or nullptr.
+// "linear velocity", "angular velocity"; events: "angular momentum", "time offset"), or nullptr.
 const char* non_finite_field(const OdomSample& sample);
 const char* non_finite_field(const SegmentEvent& event);
 
