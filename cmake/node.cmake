@@ -11,7 +11,8 @@ add_library(virtual_go_sim
   src/sim/state_output.cpp
   src/sim/stone_simulation.cpp
   src/sim/mesh_file.cpp
-  src/sim/clock_watch.cpp)
+  src/sim/clock_watch.cpp
+  src/sim/board_drawing.cpp)
 target_link_libraries(virtual_go_sim PUBLIC virtual_go_core)
 
 add_executable(stone_node
@@ -19,7 +20,8 @@ add_executable(stone_node
   src/ros/stone_node.cpp
   src/ros/stone_node_help.cpp
   src/ros/param_reader.cpp
-  src/ros/stone_messages.cpp)
+  src/ros/stone_messages.cpp
+  src/ros/board_markers.cpp)
 target_link_libraries(stone_node virtual_go_sim ${catkin_LIBRARIES})
 add_dependencies(stone_node ${${PROJECT_NAME}_EXPORTED_TARGETS} ${catkin_EXPORTED_TARGETS})
 

@@ -38,3 +38,12 @@ target_link_libraries(test_bag_replay virtual_go_bag_report GTest::gtest)
 add_dependencies(tests test_bag_replay)
 add_rostest(test/bag/bag_replay.test DEPENDENCIES test_bag_replay
   ARGS bag:=${CMAKE_CURRENT_BINARY_DIR}/bag_replay.bag)
+
+# Contact checks on bags of the core's World written with the rosbag C++ API (no node).
+catkin_add_gtest(test_bag_contact test/bag/test_bag_contact.cpp test/support/world_bags.cpp
+  TIMEOUT 600)
+target_link_libraries(test_bag_contact virtual_go_bag_report GTest::gtest_main)
+target_compile_definitions(test_bag_contact PRIVATE
+  BAG_REPORT_PATH="$<TARGET_FILE:bag_report>"
+  BAG_TEST_DIR="${CMAKE_CURRENT_BINARY_DIR}/bag_report_test")
+add_dependencies(test_bag_contact bag_report)

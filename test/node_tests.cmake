@@ -46,3 +46,7 @@ add_rostest(test/ros/rviz_smoke.test DEPENDENCIES stone_node)
 add_rostest(test/ros/readme_commands.test DEPENDENCIES stone_node bag_report)
 # use_sim_time without /clock: the node says it waits (test/ros/test_stone_node_clock_wait.py).
 add_rostest(test/ros/stone_node_clock_wait.test DEPENDENCIES stone_node)
+
+# The board's drawing for rviz (ROS-free): gtest, no master.
+catkin_add_gtest(board_drawing_test test/sim/test_board_drawing.cpp)
+target_link_libraries(board_drawing_test virtual_go_sim GTest::gtest_main)

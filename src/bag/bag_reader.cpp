@@ -76,6 +76,15 @@ std::optional<M> decode(const rosbag::MessageInstance& m, const std::vector<std:
   return checked_deserialize<M>(bytes);
 }
 
+// The package's own types change between versions (issue 10 added the board to StoneInfo and
+// the sub-ns offset to StoneEvent): a bag recorded with another version has the same type name
+// and another md5sum, and cannot be read as this version's type.
+template <class M>
+bool other_version(const rosbag::MessageInstance& m) {
+  return m.getDataType() == ros::message_traits::datatype<M>() &&
+         m.getMD5Sum() != ros::message_traits::md5sum<M>();
+}
+
 // Corrupt messages named in the problems; past this many, only counted.
 constexpr std::size_t kCorruptNamed = 5;
 
@@ -149,7 +158,7 @@ class Reader {
       out_.problems.push_back("the bag holds no messages");
       return;
     }
-    if (!out_.info) {
+    if (!out_.info && other_version_.count(info_topic_) == 0) {
       out_.problems.push_back("no virtual_go/StoneInfo message (looked for " + ns_ +
                               "/info): physics check skipped");
     }
@@ -211,7 +220,19 @@ class Reader {
     }
   }
 
+  // Once per topic: the bag holds `what` in another version of its message type M.
+  template <class M>
+  void note_other_version(const rosbag::MessageInstance& m, const std::string& what) {
+    if (!other_version_.insert(m.getTopic()).second) return;
+    out_.problems.push_back(what + " " + cut_user_text(m.getTopic()) + " is " + m.getDataType() +
+                            " of another message version (md5sum " + m.getMD5Sum() +
+                            ", this bag_report reads " + ros::message_traits::md5sum<M>() +
+                            "): the bag was recorded by an older virtual_go (before the board "
+                            "was added) and cannot be checked by this one; record it again");
+  }
+
   void read_info(const rosbag::MessageInstance& m) {
+    if (other_version<StoneInfo>(m)) return note_other_version<StoneInfo>(m, "~info");
     const std::optional<StoneInfo> msg = decode<StoneInfo>(m, bytes_);
     if (!msg || out_.info) return;  // the first info describes the run
     RecordingInfo info;
@@ -227,6 +248,14 @@ class Reader {
     info.dt_ns = msg->dt_ns;
     info.rate_hz = msg->rate;
     tf2::fromMsg(msg->gravity, info.gravity_world);
+    info.width_m = msg->width;
+    info.height_m = msg->height;
+    info.board_enabled = msg->board_enabled;
+    tf2::fromMsg(msg->board_size, info.board_size_m);
+    info.board_rolling_resistance_m = msg->board_rolling_resistance;
+    info.board_spinning_friction_m = msg->board_spinning_friction;
+    info.table_rolling_resistance_m = msg->table_rolling_resistance;
+    info.table_spinning_friction_m = msg->table_spinning_friction;
     out_.info = info;
   }
 
@@ -244,12 +273,15 @@ class Reader {
   }
 
   void read_event(const rosbag::MessageInstance& m) {
+    if (other_version<StoneEvent>(m)) return note_other_version<StoneEvent>(m, "~events");
     const std::optional<StoneEvent> msg = decode<StoneEvent>(m, bytes_);
     if (!msg) return;
     SegmentEvent e;
     e.stamp_ns = to_ns(msg->header.stamp);
+    e.time_offset_s = msg->time_offset;
     e.segment = msg->segment;
     e.reason = msg->reason;
+    e.detail = msg->detail;
     tf2::fromMsg(msg->pose.position, e.position_world);
     tf2::fromMsg(msg->pose.orientation, e.orientation);
     tf2::fromMsg(msg->twist.linear, e.velocity_world);
@@ -268,6 +300,7 @@ class Reader {
   std::string info_topic_, pose_topic_;
   std::map<std::string, std::string> types_, definitions_;
   std::set<std::string> latched_;
+  std::set<std::string> other_version_;  // topics already named as another message version
   std::map<std::string, std::size_t> index_;
 };
 

@@ -18,6 +18,26 @@ double parse_limit(const std::string& option, const std::string& text) {
   return v;
 }
 
+// The index of a contact limit's option (thresholds.h), or -1.
+int contact_option(const std::string& option) {
+  for (int c = 0; c < kContactLimitCount; ++c) {
+    if (option == contact_limit(c).option) return c;
+  }
+  return -1;
+}
+
+// One line per contact limit, from its table (defaults under "contact checks" below).
+std::string contact_options_text() {
+  std::string text;
+  for (int c = 0; c < kContactLimitCount; ++c) {
+    const ContactLimit& limit = contact_limit(c);
+    std::string left = std::string("  ") + limit.option + " " + (c == kRestMoves ? "N" : "X");
+    left.resize(30, ' ');
+    text += left + limit.figure + " limit (" + limit.unit + ")\n";
+  }
+  return text;
+}
+
 }  // namespace
 
 std::string usage_text() {
@@ -26,9 +46,12 @@ std::string usage_text() {
 
 Inspects a rosbag recorded from the virtual_go stone node: per topic message count, mean rate,
 stamp period p50/p99/max, gaps over 2x the median period, repeated or non-increasing stamps;
-physics health from ~odom and ~info (| |q| - 1 |, energy and world angular momentum drift,
-orientation and position error against the exact closed form, restarted at every ~events
-segment).
+physics health from ~odom and ~info, per ~events segment by its regime: flights (| |q| - 1 |,
+energy and world angular momentum drift, orientation and position error against the exact
+closed form from the event's exact instant, Jellett's integral); contact (slide, roll, rim:
+energy never rising, Jellett's integral on a cap without rolling resistance or spinning
+friction); rest (every sample bitwise still); with the board in ~info, every sample's gap above
+the board's top or the table.
 
 options:
   --csv FILE                  write the physics time series (one row per ~odom message)
@@ -41,7 +64,8 @@ options:
   --max-energy-drift X        relative to the segment's energy scale
   --max-momentum-drift X      relative to |L0|
   --max-quat-norm-error X     (defaults below)
-  --max-gaps N                gaps allowed per periodic topic (default 0)
+)" + contact_options_text() +
+         R"(  --max-gaps N                gaps allowed per periodic topic (default 0)
   --rate-tolerance X          allowed |mean rate / ~info rate - 1| (default 0.1)
   -h, --help                  this text
 
@@ -81,6 +105,8 @@ Options parse_options(const std::vector<std::string>& args) {
       o.limits.momentum_drift = parse_limit(a, value());
     } else if (a == "--max-quat-norm-error") {
       o.limits.quat_norm_error = parse_limit(a, value());
+    } else if (const int c = contact_option(a); c >= 0) {
+      o.limits.contact[c] = parse_limit(a, value());
     } else if (a == "--max-gaps") {
       const double n = parse_limit(a, value());
       if (n != std::floor(n)) throw UsageError("--max-gaps needs a whole number");

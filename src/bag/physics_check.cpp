@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <optional>
 
@@ -10,7 +11,9 @@
 #include "virtual_go/common/sim_time.h"
 #include "virtual_go/common/validation.h"
 #include "virtual_go/flight/exact_motion.h"
+#include "virtual_go/geometry/lens_geometry.h"
 #include "virtual_go/geometry/rotation.h"
+#include "virtual_go/go/board_distance.h"
 
 namespace virtual_go {
 namespace bag {
@@ -22,6 +25,38 @@ double energy_scale(const RigidBody& body, const Eigen::Vector3d& gravity) {
   return body.kinetic_energy() + std::abs(body.potential_energy(gravity));
 }
 
+// The board of ~info as the core's distance, or nothing (no board, or ~info cannot describe one:
+// the note says why).
+std::optional<BoardDistance> board_of(const RecordingInfo& info, std::string& note) {
+  if (!info.board_enabled) return std::nullopt;
+  try {
+    BoardGeometry board;
+    board.size_x_m = info.board_size_m.x();
+    board.size_y_m = info.board_size_m.y();
+    board.thickness_m = info.board_size_m.z();
+    validate_board("info board_size", board);
+    return BoardDistance(LensGeometry(LensShape(info.width_m, info.height_m)), board);
+  } catch (const std::exception& e) {
+    note = std::string("no gap check: ~info's board or lens is unusable: ") + e.what();
+    return std::nullopt;
+  }
+}
+
+// Jellett's integral of the cap facing the plane below (docs/physics.md, "Sustained contact"):
+// J = L . (R e_z - s d b), s = +1 for the bottom cap (b . e_z > 0), -1 for the top cap. In
+// flight it is conserved for either sign (L and L . b are).
+double jellett(const LensGeometry& lens, const RigidBodyState& s, double cap_sign) {
+  const Eigen::Vector3d b = s.orientation * Eigen::Vector3d::UnitZ();
+  return s.angular_momentum_world.dot(lens.sphere_radius() * Eigen::Vector3d::UnitZ() -
+                                      cap_sign * lens.sphere_offset() * b);
+}
+
+bool is_fallback_detail(const std::string& detail) {
+  // The World's nonsmooth fallback (edges, corners, sides) starts with these details; it
+  // applies neither a rolling couple nor a cap's geometry, so Jellett's integral does not hold.
+  return detail == "edge_contact" || detail == "left_region" || detail == "obstacle";
+}
+
 // "the set_state event at 100.500000000 s" or "the first odom at ...".
 std::string start_text(const SegmentPlan& plan) {
   return "the " + (plan.from_event ? cut_user_text(plan.reason) + " event" : plan.reason) + " at " +
@@ -30,6 +65,30 @@ std::string start_text(const SegmentPlan& plan) {
 
 }  // namespace
 
+std::string segment_kind_name(SegmentKind kind) {
+  switch (kind) {
+    case SegmentKind::flight:
+      return "flight";
+    case SegmentKind::contact:
+      return "contact";
+    case SegmentKind::rest:
+      return "rest";
+  }
+  return "flight";
+}
+
+SegmentKind segment_kind(const std::vector<SegmentEvent>& events, std::size_t index) {
+  const std::string& reason = events[index].reason;
+  if (reason == "slide" || reason == "roll" || reason == "rim") return SegmentKind::contact;
+  if (reason == "rest") return SegmentKind::rest;
+  if (reason == "impact" && index + 1 < events.size() &&
+      events[index + 1].stamp_ns == events[index].stamp_ns &&
+      events[index + 1].time_offset_s == events[index].time_offset_s) {
+    return SegmentKind::contact;
+  }
+  return SegmentKind::flight;
+}
+
 std::vector<SegmentPlan> plan_segments(const std::vector<OdomSample>& odom,
                                        const std::vector<SegmentEvent>& events) {
   std::vector<SegmentPlan> plans;
@@ -37,9 +96,11 @@ std::vector<SegmentPlan> plan_segments(const std::vector<OdomSample>& odom,
   auto start_at_event = [&](std::size_t sample_index) {
     SegmentPlan p;
     p.reason = events[next_event].reason;
+    p.detail = events[next_event].detail;
     p.from_event = true;
     p.event_index = next_event;
     p.start_ns = events[next_event].stamp_ns;
+    p.start_offset_s = events[next_event].time_offset_s;
     p.first = p.end = sample_index;
     plans.push_back(p);
     ++next_event;
@@ -49,7 +110,9 @@ std::vector<SegmentPlan> plan_segments(const std::vector<OdomSample>& odom,
     while (next_event < events.size()) {
       const std::int64_t event_stamp = events[next_event].stamp_ns;
       const bool jumped_back = !plans.empty() && stamp < plans.back().start_ns;
-      const bool reached = event_stamp <= stamp;
+      // An event after its rounded-down stamp (offset > 0) is still ahead of a sample there.
+      const bool reached = event_stamp < stamp ||
+                           (event_stamp == stamp && !(events[next_event].time_offset_s > 0.0));
       // Normally an event lies ahead of the current segment's start; after a backwards jump
       // it lies behind it, and the samples have jumped back too.
       if (reached && (plans.empty() || event_stamp >= plans.back().start_ns || jumped_back)) {
@@ -84,6 +147,7 @@ const char* non_finite_field(const SegmentEvent& event) {
   if (!event.orientation.coeffs().allFinite()) return "orientation";
   if (!event.velocity_world.allFinite()) return "linear velocity";
   if (!event.angular_momentum_world.allFinite()) return "angular momentum";
+  if (!std::isfinite(event.time_offset_s)) return "time offset";
   return nullptr;
 }
 
@@ -144,12 +208,18 @@ PhysicsResult check_physics(const RecordingInfo& info, const std::vector<OdomSam
   count_non_finite(result.non_finite_odom, odom);
   count_non_finite(result.non_finite_events, events);
 
+  std::string board_note;
+  const std::optional<BoardDistance> board = board_of(info, board_note);
   const std::vector<SegmentPlan> plans = plan_segments(odom, events);
   for (std::size_t k = 0; k < plans.size(); ++k) {
     SegmentResult seg;
     seg.plan = plans[k];
     seg.samples = seg.plan.end - seg.plan.first;
     if (!seg.plan.from_event && seg.samples == 0) continue;  // cannot happen; defensive
+    seg.kind =
+        seg.plan.from_event ? segment_kind(events, seg.plan.event_index) : SegmentKind::flight;
+    seg.board = board.has_value();
+    seg.min_gap_m = std::numeric_limits<double>::infinity();
 
     std::optional<RigidBodyState> start;
     try {
@@ -159,7 +229,9 @@ PhysicsResult check_physics(const RecordingInfo& info, const std::vector<OdomSam
       seg.note = "unusable start state (" + start_text(seg.plan) + "): " + e.what();
     }
     std::optional<ExactMotion> exact;
-    if (start) {
+    if (start && seg.kind != SegmentKind::flight) {
+      // No closed form in contact or at rest: the segment's kind says what it is held to.
+    } else if (start) {
       try {
         exact.emplace(setup, *start);
         seg.predicted = true;
@@ -177,6 +249,32 @@ PhysicsResult check_physics(const RecordingInfo& info, const std::vector<OdomSam
       scale = energy_scale(body, info.gravity_world);
       l0 = start->angular_momentum_world;
     }
+    // Jellett's integral: conserved in flight; in contact on a cap (not the rim, not the
+    // fallback) when the surface has neither rolling resistance nor spinning friction.
+    double cap_sign = 1.0;
+    double j0 = 0.0, j_scale = 0.0;
+    if (start && board) {
+      const LensGeometry& lens = board->lens();
+      const double ct = (start->orientation * Eigen::Vector3d::UnitZ()).z();
+      cap_sign = ct >= 0.0 ? 1.0 : -1.0;
+      if (seg.kind == SegmentKind::flight) {
+        seg.jellett_conserved = true;
+      } else if (seg.kind == SegmentKind::contact) {
+        const std::string& detail = seg.plan.detail;
+        const bool on_table = board->nearest(*start).on_table();
+        const double l_r =
+            on_table ? info.table_rolling_resistance_m : info.board_rolling_resistance_m;
+        const double l_s =
+            on_table ? info.table_spinning_friction_m : info.board_spinning_friction_m;
+        seg.jellett_conserved = seg.plan.reason != "rim" && seg.plan.reason != "impact" &&
+                                !is_fallback_detail(detail) &&
+                                std::abs(ct) >= lens.cos_cap_cone() && l_r == 0.0 && l_s == 0.0;
+      }
+      j0 = jellett(lens, *start, cap_sign);
+      j_scale = lens.sphere_radius() * start->angular_momentum_world.norm();
+      seg.min_gap_m = board->nearest(*start).lens.gap_m;
+    }
+    double lowest_energy = e0;  // contact: the lowest energy so far (the event's, then samples)
     std::vector<RigidBodyState> states;
     states.reserve(seg.samples);
     // Momentum drift is relative to |L0|. A segment that starts without spin has no such
@@ -195,7 +293,16 @@ PhysicsResult check_physics(const RecordingInfo& info, const std::vector<OdomSam
       const RigidBody body(model, states.back());
       scale = std::max(scale, energy_scale(body, info.gravity_world));
       if (l0_zero) l_scale = std::max(l_scale, states.back().angular_momentum_world.norm());
+      if (board) {
+        j_scale = std::max(
+            j_scale, board->lens().sphere_radius() * states.back().angular_momentum_world.norm());
+      }
     }
+    // Rest: every sample equal to the segment's first to the bit, with zero velocities.
+    const OdomSample* rest_reference = seg.samples > 0 ? &odom[seg.plan.first] : nullptr;
+    auto same_bits = [](const auto& a, const auto& b) {
+      return std::memcmp(a.data(), b.data(), sizeof(double) * 3) == 0;
+    };
 
     for (std::size_t j = 0; j < states.size(); ++j) {
       const OdomSample& o = odom[seg.plan.first + j];
@@ -203,14 +310,43 @@ PhysicsResult check_physics(const RecordingInfo& info, const std::vector<OdomSam
       PhysicsSample p;
       p.segment = result.segments.size();
       p.stamp_ns = o.stamp_ns;
-      p.t_s = seconds_between(seg.plan.start_ns, o.stamp_ns);
+      p.t_s = seconds_between(seg.plan.start_ns, o.stamp_ns) - seg.plan.start_offset_s;
       p.quat_norm_error = std::abs(o.orientation_raw.norm() - 1.0);
+      p.gap_m = p.energy_rise = p.jellett_drift = nan;
+      if (seg.kind == SegmentKind::rest && rest_reference != nullptr) {
+        const bool still =
+            same_bits(o.position_world, rest_reference->position_world) &&
+            std::memcmp(o.orientation_raw.coeffs().data(),
+                        rest_reference->orientation_raw.coeffs().data(), sizeof(double) * 4) == 0 &&
+            (o.velocity_body.array() == 0.0).all() &&
+            (o.angular_velocity_body.array() == 0.0).all();
+        if (!still) {
+          ++seg.rest_moved;
+          seg.rest_max_move_m = std::fmax(
+              seg.rest_max_move_m, (o.position_world - rest_reference->position_world).norm());
+        }
+      }
       if (!s.orientation.coeffs().allFinite()) {
         p.energy_drift = p.momentum_drift = p.orientation_error = p.position_error = nan;
         p.angular_speed = nan;
       } else {
+        if (board) {
+          p.gap_m = board->nearest(s).lens.gap_m;
+          seg.min_gap_m = std::fmin(seg.min_gap_m, p.gap_m);
+        }
+        if (start && board && seg.jellett_conserved) {
+          p.jellett_drift =
+              j_scale > 0.0 ? std::abs(jellett(board->lens(), s, cap_sign) - j0) / j_scale : 0.0;
+          seg.max_jellett_drift = std::fmax(seg.max_jellett_drift, p.jellett_drift);
+        }
         const RigidBody body(model, s);
         p.angular_speed = body.angular_velocity_world().norm();
+        if (start && seg.kind == SegmentKind::contact) {
+          const double e = body.total_energy(info.gravity_world);
+          p.energy_rise = scale > 0.0 ? (e - lowest_energy) / scale : 0.0;
+          lowest_energy = std::min(lowest_energy, e);
+          seg.max_energy_rise = std::fmax(seg.max_energy_rise, p.energy_rise);
+        }
         if (start) {
           p.energy_drift =
               scale > 0.0 ? std::abs(body.total_energy(info.gravity_world) - e0) / scale : 0.0;
@@ -271,6 +407,8 @@ PhysicsResult check_physics(const RecordingInfo& info, const std::vector<OdomSam
           seg.max_angular_speed,
           model.angular_velocity_world(start->orientation, start->angular_momentum_world).norm());
     }
+    if (!std::isfinite(seg.min_gap_m)) seg.min_gap_m = nan;
+    if (!board_note.empty() && seg.note.empty()) seg.note = board_note;
     result.segments.push_back(seg);
   }
   return result;

@@ -134,34 +134,60 @@ void print_report(std::ostream& out, const Report& report) {
                                      : "from " + rec.events_topic)
         << "):\n";
     out << "  " << std::right << std::setw(3) << "#"
-        << "  " << std::left << std::setw(22) << "reason" << std::right << std::setw(14)
+        << "  " << std::left << std::setw(34) << "reason" << std::right << std::setw(14)
         << "start s" << std::setw(10) << "length s" << std::setw(8) << "odom" << std::setw(11)
         << "|w| rad/s" << std::setw(11) << "orient rad" << std::setw(11) << "pos m" << std::setw(11)
-        << "energy" << std::setw(11) << "momentum" << std::setw(11) << "||q|-1|"
+        << "energy" << std::setw(11) << "momentum" << std::setw(11) << "||q|-1|" << std::setw(11)
+        << "gap m" << std::setw(11) << "E rise" << std::setw(11) << "Jellett"
         << "\n";
     for (std::size_t k = 0; k < p.segments.size(); ++k) {
       const SegmentResult& s = p.segments[k];
-      out << "  " << std::right << std::setw(3) << k << "  " << std::left << std::setw(22)
-          << s.plan.reason << std::right << std::setw(14) << short_stamp_text(s.plan.start_ns)
-          << std::setw(10) << fixed(s.duration_s, 3) << std::setw(8) << s.samples << std::setw(11)
+      // "slide (contact, edge_contact)", "lift_off (separation)", "start".
+      std::string reason = s.plan.reason;
+      const bool detailed = !s.plan.detail.empty() && s.plan.detail != s.plan.reason;
+      if (s.kind != SegmentKind::flight) {
+        reason += " (" + segment_kind_name(s.kind) + (detailed ? ", " + s.plan.detail : "") + ")";
+      } else if (detailed) {
+        reason += " (" + s.plan.detail + ")";
+      }
+      out << "  " << std::right << std::setw(3) << k << "  " << std::left << std::setw(34) << reason
+          << std::right << std::setw(14) << short_stamp_text(s.plan.start_ns) << std::setw(10)
+          << fixed(s.duration_s, 3) << std::setw(8) << s.samples << std::setw(11)
           << fixed(s.max_angular_speed, 3);
       if (s.samples == 0) {
         out << "  (no odom in this segment)\n";
         continue;
       }
+      const bool flight = s.kind == SegmentKind::flight;
+      const bool conserving = s.kind != SegmentKind::contact;
       out << std::setw(11) << (s.predicted ? sci(s.max_orientation_error) : "n/a") << std::setw(11)
           << (s.predicted ? sci(s.max_position_error) : "n/a") << std::setw(11)
-          << sci(s.max_energy_drift) << std::setw(11) << sci(s.max_momentum_drift) << std::setw(11)
-          << sci(s.max_quat_norm_error) << "\n";
+          << (conserving ? sci(s.max_energy_drift) : "-") << std::setw(11)
+          << (conserving ? sci(s.max_momentum_drift) : "-") << std::setw(11)
+          << sci(s.max_quat_norm_error) << std::setw(11) << (s.board ? sci(s.min_gap_m) : "-")
+          << std::setw(11) << (flight || conserving ? "-" : sci(s.max_energy_rise)) << std::setw(11)
+          << (s.jellett_conserved ? sci(s.max_jellett_drift) : "-") << "\n";
+      if (s.kind == SegmentKind::rest && s.rest_moved > 0) {
+        out << "       rest: " << s.rest_moved << " samples moved (largest "
+            << sci(s.rest_max_move_m) << " m)\n";
+      }
       if (!s.note.empty()) out << "       note: " << s.note << "\n";
     }
     double m[5] = {0, 0, 0, 0, 0};
+    double rise = 0.0, gap = INFINITY, jellett = 0.0;
+    std::size_t moved = 0;
+    bool board = false;
     for (const SegmentResult& s : p.segments) {
       m[0] = std::fmax(m[0], s.max_quat_norm_error);
-      m[1] = std::fmax(m[1], s.max_energy_drift);
-      m[2] = std::fmax(m[2], s.max_momentum_drift);
+      if (s.kind != SegmentKind::contact) m[1] = std::fmax(m[1], s.max_energy_drift);
+      if (s.kind != SegmentKind::contact) m[2] = std::fmax(m[2], s.max_momentum_drift);
       if (s.predicted) m[3] = std::fmax(m[3], s.max_orientation_error);
       if (s.predicted) m[4] = std::fmax(m[4], s.max_position_error);
+      if (s.kind == SegmentKind::contact) rise = std::fmax(rise, s.max_energy_rise);
+      if (s.board && s.samples > 0) gap = std::fmin(gap, s.min_gap_m);
+      if (s.jellett_conserved) jellett = std::fmax(jellett, s.max_jellett_drift);
+      moved += s.rest_moved;
+      board = board || s.board;
     }
     out << "\nphysics (" << rec.odom_topic << ", " << p.samples.size() << " samples, "
         << p.segments.size() << " segments), maxima over the run:\n"
@@ -169,7 +195,12 @@ void print_report(std::ostream& out, const Report& report) {
         << "  energy drift           " << sci(m[1]) << " (relative)\n"
         << "  momentum drift         " << sci(m[2]) << " (relative, world L)\n"
         << "  orientation error      " << sci(m[3]) << " rad (vs closed form)\n"
-        << "  position error         " << sci(m[4]) << " m (vs closed form)\n";
+        << "  position error         " << sci(m[4]) << " m (vs closed form)\n"
+        << "  energy rise            " << sci(rise) << " (relative, contact segments)\n"
+        << "  smallest gap           " << (board ? sci(gap) : "n/a (no board in ~info)")
+        << " m (above the board's top or the table)\n"
+        << "  Jellett drift          " << sci(jellett) << " (relative, where conserved)\n"
+        << "  rest samples moved     " << moved << "\n";
     auto print_non_finite = [&](const NonFiniteValues& v, const std::string& what) {
       if (v.count == 0) return;
       out << "  non-finite values      " << v.count << " " << what << " (first at "
@@ -198,7 +229,8 @@ void write_csv(const std::string& path, const Report& report) {
   std::ofstream out(path);
   if (!out) throw OutputError("cannot write CSV " + path);
   out << "segment,stamp_s,time_s,t_segment_s,quat_norm_error,energy_drift,momentum_drift,"
-         "orientation_error_rad,position_error_m,angular_speed_rad_s\n";
+         "orientation_error_rad,position_error_m,angular_speed_rad_s,gap_m,energy_rise,"
+         "jellett_drift\n";
   if (report.physics) {
     const auto& samples = report.physics->samples;
     const std::int64_t t0 = samples.empty() ? 0 : samples.front().stamp_ns;
@@ -207,7 +239,8 @@ void write_csv(const std::string& path, const Report& report) {
       out << s.segment << "," << short_stamp_text(s.stamp_ns).substr(0) << ","
           << fixed(seconds_between(t0, s.stamp_ns), 9) << "," << fixed(s.t_s, 9) << ","
           << s.quat_norm_error << "," << s.energy_drift << "," << s.momentum_drift << ","
-          << s.orientation_error << "," << s.position_error << "," << s.angular_speed << "\n";
+          << s.orientation_error << "," << s.position_error << "," << s.angular_speed << ","
+          << s.gap_m << "," << s.energy_rise << "," << s.jellett_drift << "\n";
     }
   }
   out.flush();

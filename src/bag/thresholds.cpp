@@ -20,7 +20,25 @@ std::string format_short(double v) {
   return out.str();
 }
 
+// The contact integrator's dense output between its (guarded) step ends may lie 1.6e-12 relative
+// above an earlier sample (docs/physics.md, "World"); 1e-11 leaves round-off room and still
+// catches any real gain. The gap bound is the World's own promise (gap >= -1e-12 m). Jellett's
+// integral is held to 7e-13 through flight, cap impacts and sliding; 1e-9 is the floor of every
+// other figure. A resting stone is frozen bit for bit: no sample may differ.
+const ContactLimit kContactLimits[kContactLimitCount] = {
+    {"energy rise", "--max-energy-rise", 1e-11, "relative",
+     "contact segments: energy above the segment's lowest so far / its energy scale"},
+    {"penetration (m)", "--max-penetration", 1e-12, "m",
+     "every sample: depth of the lens below the board's top or the table (< 0: clear)"},
+    {"Jellett drift", "--max-jellett-drift", 1e-9, "relative",
+     "|J - J0| / (R max|L|): flights; cap contact when l_r = l_s = 0"},
+    {"rest motion", "--max-rest-moves", 0.0, "samples",
+     "rest segments: samples not bitwise equal to the first or not at zero velocity"},
+};
+
 }  // namespace
+
+const ContactLimit& contact_limit(int index) { return kContactLimits[index]; }
 
 std::string default_limits_text() {
   std::ostringstream out;
@@ -39,6 +57,12 @@ std::string default_limits_text() {
     const ErrorBoundConstants& k = i.error_bound;
     out << "  " << std::left << std::setw(12) << i.name << std::setw(4) << i.order << std::setw(8)
         << k.k_orientation << std::setw(8) << k.k_energy << k.k_gravity << "\n";
+  }
+  out << "\ncontact checks (with the board in ~info; each limit set by its option):\n";
+  for (const ContactLimit& c : kContactLimits) {
+    out << "  " << std::left << std::setw(18) << c.figure << std::setw(7) << c.default_limit
+        << std::setw(9) << c.unit << std::setw(22) << c.option << "\n"
+        << "      " << c.meaning << "\n";
   }
   return out.str();
 }
@@ -122,14 +146,19 @@ std::vector<Check> run_checks(const Recording& recording, const std::vector<Stam
     add_non_finite(physics->non_finite_events, recording.events_topic);
   }
   const RecordingInfo& info = *recording.info;
-  // Per figure, the segment closest to (or furthest over) its own limit.
+  // Per figure, the segment closest to (or furthest over) its own limit, and every other
+  // segment over it (a violation is named per segment, with its numbers).
+  constexpr int kFlightFigures = 5;
+  constexpr int kFigures = kFlightFigures + kContactLimitCount;
   struct Worst {
-    double ratio = -1.0;
+    bool seen = false;
+    double ratio = 0.0;
     Check check;
   };
-  Worst worst[5];
-  const char* names[5] = {"max | |q| - 1 |", "energy drift", "momentum drift",
-                          "orientation error (rad)", "position error (m)"};
+  Worst worst[kFigures];
+  std::vector<Check> over;  // segments over a limit, other than the worst
+  const char* names[kFlightFigures] = {"max | |q| - 1 |", "energy drift", "momentum drift",
+                                       "orientation error (rad)", "position error (m)"};
   for (std::size_t k = 0; k < physics->segments.size(); ++k) {
     const SegmentResult& seg = physics->segments[k];
     if (seg.samples == 0) continue;
@@ -140,28 +169,74 @@ std::vector<Check> run_checks(const Recording& recording, const std::vector<Stam
       add("physics bound", "segment " + std::to_string(k), NAN, 0.0, e.what());
       return checks;
     }
-    const double values[5] = {seg.max_quat_norm_error, seg.max_energy_drift, seg.max_momentum_drift,
-                              seg.predicted ? seg.max_orientation_error : NAN,
-                              seg.predicted ? seg.max_position_error : NAN};
-    const double limits[5] = {b.quat_norm_error, b.energy_drift, b.momentum_drift,
-                              b.orientation_error, b.position_error};
-    for (int f = 0; f < 5; ++f) {
+    const bool flight = seg.kind == SegmentKind::flight;
+    const bool rest = seg.kind == SegmentKind::rest;
+    // What each figure is for this segment; NaN computes nothing, `applies` false skips it.
+    double values[kFigures] = {seg.max_quat_norm_error,
+                               seg.max_energy_drift,
+                               seg.max_momentum_drift,
+                               seg.predicted ? seg.max_orientation_error : NAN,
+                               seg.predicted ? seg.max_position_error : NAN,
+                               seg.max_energy_rise,
+                               -seg.min_gap_m,
+                               seg.max_jellett_drift,
+                               static_cast<double>(seg.rest_moved)};
+    const bool applies[kFigures] = {true,
+                                    flight || rest,
+                                    flight || rest,
+                                    flight,
+                                    flight,
+                                    seg.kind == SegmentKind::contact,
+                                    seg.board,
+                                    seg.jellett_conserved,
+                                    rest};
+    double limits[kFigures] = {b.quat_norm_error, b.energy_drift, b.momentum_drift,
+                               b.orientation_error, b.position_error};
+    for (int c = 0; c < kContactLimitCount; ++c) {
+      limits[kFlightFigures + c] =
+          overrides.contact[c] ? *overrides.contact[c] : contact_limit(c).default_limit;
+    }
+    const std::string kind = " (" + segment_kind_name(seg.kind) + ", " + seg.plan.reason + ")";
+    for (int f = 0; f < kFigures; ++f) {
+      if (!applies[f]) continue;
       double ratio = INFINITY;  // a figure that could not be computed is the worst
       if (std::isfinite(values[f])) {
-        ratio = limits[f] > 0.0 ? values[f] / limits[f] : (values[f] > 0.0 ? INFINITY : 0.0);
+        // A clearance (negative penetration) gives a negative ratio: the smallest is the worst.
+        ratio = limits[f] > 0.0 ? values[f] / limits[f]
+                                : (values[f] > limits[f] ? INFINITY : values[f] - limits[f]);
       }
-      if (ratio > worst[f].ratio) {
-        const std::string basis = f == 0 ? "a published quaternion is unit" : b.basis;
-        worst[f] = {ratio,
-                    {names[f], "segment " + std::to_string(k), values[f], limits[f],
-                     std::isfinite(values[f]) && values[f] <= limits[f],
-                     seg.predicted || f < 3 ? basis : seg.note}};
+      std::string basis;
+      if (f == 0) {
+        basis = "a published quaternion is unit";
+      } else if (f < kFlightFigures) {
+        basis = seg.predicted || f < 3 ? b.basis : seg.note;
+      } else {
+        const ContactLimit& c = contact_limit(f - kFlightFigures);
+        basis = std::string(c.option) + ", " + c.unit;
+        if (f - kFlightFigures == kRestMoves && seg.rest_moved > 0) {
+          std::ostringstream moved;
+          moved << "; largest move " << seg.rest_max_move_m << " m";
+          basis += moved.str();
+        }
+      }
+      const Check check{f < kFlightFigures ? names[f] : contact_limit(f - kFlightFigures).figure,
+                        "segment " + std::to_string(k) + kind,
+                        values[f],
+                        limits[f],
+                        std::isfinite(values[f]) && values[f] <= limits[f],
+                        basis};
+      if (!worst[f].seen || ratio > worst[f].ratio) {
+        if (worst[f].seen && !worst[f].check.pass) over.push_back(worst[f].check);
+        worst[f] = {true, ratio, check};
+      } else if (!check.pass) {
+        over.push_back(check);
       }
     }
   }
   for (const Worst& w : worst) {
-    if (w.ratio >= 0.0) checks.push_back(w.check);
+    if (w.seen) checks.push_back(w.check);
   }
+  for (const Check& c : over) checks.push_back(c);
   return checks;
 }
 

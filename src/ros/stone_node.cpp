@@ -9,6 +9,7 @@
 
 #include "virtual_go/common/formatting.h"
 #include "virtual_go/common/sim_time.h"
+#include "virtual_go/ros/board_markers.h"
 #include "virtual_go/ros/param_reader.h"
 #include "virtual_go/ros/stone_messages.h"
 #include "virtual_go/sim/mesh_file.h"
@@ -119,6 +120,13 @@ StoneNode::StoneNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_n
   // every tick, duplicating /tf) and a robot model (rviz reads robot_description once, so it
   // depends on start order too). The first one goes out right after the first transform.
   marker_ = make_marker(sim_);
+  // The board is drawn in the fixed frame: it needs no transform, but rviz's tf filter still
+  // holds it until the frame exists and can drop it as above, so it goes out with the marker.
+  if (const std::optional<WorldConfig>& world = sim_.world_config()) {
+    board_markers_ = to_board_markers_msg(make_board_drawing(world->board), c.world_frame);
+    board_markers_pub_ =
+        private_nh_.advertise<visualization_msgs::MarkerArray>("board_markers", 1, true);
+  }
   marker_timer_ =
       nh_.createWallTimer(ros::WallDuration(kMarkerPeriodS), &StoneNode::on_marker_timer, this);
   if (ros::Time::isSimTime()) {
@@ -161,6 +169,7 @@ void StoneNode::on_timer(const ros::TimerEvent&) {
     if (result.advanced) publish_state(result.stamp_ns);
     if (result.advanced && !marker_sent_) {
       marker_pub_.publish(marker_);
+      if (board_markers_pub_) board_markers_pub_.publish(board_markers_);
       marker_sent_ = true;
     }
   } catch (const std::exception& e) {
@@ -171,6 +180,7 @@ void StoneNode::on_timer(const ros::TimerEvent&) {
 
 void StoneNode::on_marker_timer(const ros::WallTimerEvent&) {
   if (marker_sent_) marker_pub_.publish(marker_);
+  if (marker_sent_ && board_markers_pub_) board_markers_pub_.publish(board_markers_);
 }
 
 void StoneNode::on_clock_watch(const ros::WallTimerEvent&) {

@@ -80,6 +80,8 @@ Published (private names, ~ = the node's name, e.g. /stone):
   ~odom                nav_msgs/Odometry: pose in the world frame, twist in the stone frame
   ~marker              visualization_msgs/Marker (latched, every second): the lens as a
                        MESH_RESOURCE, an STL file in $ROS_HOME/virtual_go (~/.ros/virtual_go)
+  ~board_markers       visualization_msgs/MarkerArray (latched, every second; with
+                       ~board/enabled): the board, the table, the lines and the star points
   ~info                virtual_go/StoneInfo (latched): stone, model, integrator, dt, initial
                        state, board and contact materials
   ~events              virtual_go/StoneEvent (latched): start of each motion segment, by

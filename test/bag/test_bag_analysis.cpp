@@ -307,6 +307,68 @@ TEST(Thresholds, NanFigureFails) {
   EXPECT_TRUE(orientation_failed) << "a figure that cannot be computed must not pass --strict";
 }
 
+// An event after its rounded-down stamp (sub-ns offset) lies after a sample at that stamp; one
+// with offset 0 at the same stamp takes it, as before.
+TEST(PlanSegments, SubNanosecondOffsetKeepsASampleAtTheStampBeforeTheEvent) {
+  std::vector<vb::OdomSample> odom;
+  for (int i = 0; i < 4; ++i) odom.push_back(odom_at(1000 * kMs + i * 20 * kMs, i * 0.02));
+  std::vector<vb::SegmentEvent> events = {event_at(1000 * kMs, "start"),
+                                          event_at(1020 * kMs, "impact")};
+  events[1].time_offset_s = 0.4e-9;
+  const std::vector<vb::SegmentPlan> plans = vb::plan_segments(odom, events);
+  ASSERT_EQ(plans.size(), 2u);
+  EXPECT_EQ(plans[0].end, 2u);  // the sample at 1020 ms precedes the impact at 1020 ms + 0.4 ns
+  EXPECT_EQ(plans[1].first, 2u);
+  EXPECT_EQ(plans[1].start_offset_s, 0.4e-9);
+  events[1].time_offset_s = 0.0;
+  EXPECT_EQ(vb::plan_segments(odom, events)[1].first, 1u);
+}
+
+TEST(SegmentKind, ByReasonAndAnImpactFollowedAtTheSameInstant) {
+  std::vector<vb::SegmentEvent> events = {
+      event_at(1, "start"), event_at(2, "impact"), event_at(3, "impact"),
+      event_at(3, "slide"), event_at(4, "roll"),   event_at(5, "rim"),
+      event_at(6, "rest"),  event_at(7, "wake"),   event_at(8, "impact")};
+  events[3].time_offset_s = 0.0;
+  const vb::SegmentKind expected[] = {
+      vb::SegmentKind::flight,  vb::SegmentKind::flight,  vb::SegmentKind::contact,
+      vb::SegmentKind::contact, vb::SegmentKind::contact, vb::SegmentKind::contact,
+      vb::SegmentKind::rest,    vb::SegmentKind::flight,  vb::SegmentKind::flight};
+  for (std::size_t i = 0; i < events.size(); ++i) {
+    EXPECT_EQ(vb::segment_kind(events, i), expected[i]) << i << " " << events[i].reason;
+  }
+  // The same stamp but another offset is another instant: that impact flies.
+  events[3].time_offset_s = 0.5e-9;
+  EXPECT_EQ(vb::segment_kind(events, 2), vb::SegmentKind::flight);
+}
+
+// README.md's limits table restates the contact limits; --help lists them and their options.
+TEST(Thresholds, ContactLimitsInReadmeAndHelp) {
+  std::ifstream readme(VG_README);
+  ASSERT_TRUE(readme) << VG_README;
+  std::map<std::string, std::string> rows;
+  std::string line;
+  while (std::getline(readme, line)) {
+    if (line.rfind("| ", 0) != 0) continue;
+    const std::size_t bar = line.find(" | ", 2);
+    if (bar == std::string::npos) continue;
+    rows[line.substr(2, bar - 2)] = line.substr(bar + 3);
+  }
+  for (int c = 0; c < vb::kContactLimitCount; ++c) {
+    const vb::ContactLimit& limit = vb::contact_limit(c);
+    ASSERT_EQ(rows.count(limit.figure), 1u) << "no README row for " << limit.figure;
+    const std::string& cell = rows[limit.figure];
+    EXPECT_EQ(std::strtod(cell.c_str(), nullptr), limit.default_limit) << cell;
+    EXPECT_NE(cell.find(std::string("`") + limit.option + "`"), std::string::npos) << cell;
+    EXPECT_NE(vb::usage_text().find(limit.option), std::string::npos) << limit.option;
+    EXPECT_NE(vb::usage_text().find(limit.meaning), std::string::npos) << limit.option;
+    // The option sets the limit.
+    const vb::Options o = vb::parse_options({"a.bag", limit.option, "0.5"});
+    ASSERT_TRUE(o.limits.contact[c].has_value());
+    EXPECT_EQ(*o.limits.contact[c], 0.5);
+  }
+}
+
 TEST(Options, Parse) {
   const vb::Options o = vb::parse_options(
       {"run.bag", "--csv", "a.csv", "--strict", "--max-gaps", "3", "--node-namespace", "/s"});

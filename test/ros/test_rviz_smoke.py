@@ -1,6 +1,7 @@
 #!/usr/bin/python3
 """rviz smoke test: rviz with config/stone.rviz, on a private Xvfb display with Mesa's software
-renderer, draws the stone node's marker whatever the start order:
+renderer, draws the stone node's marker and the board (~board/enabled is set by the .test file)
+whatever the start order:
 
 - rviz first, then the node;
 - the node first, rviz 12 s later (longer than tf's 10 s cache, so nothing from the node's
@@ -10,11 +11,13 @@ renderer, draws the stone node's marker whatever the start order:
 Each order passes when, in three screenshots in a row over several seconds,
 - the pixels show it: stone-coloured (near-black) pixels in a stone-sized blob near the middle
   of the 3D view, where the camera of stone.rviz looks (test/ros/config/rviz.yaml keeps it there);
+- the board is drawn: board-coloured (lit wood) pixels fill a large part of the 3D view (the
+  background and the table are grey, the lines dark brown, the stone black);
 - rviz's own status of every display is Ok: rviz colours a display's name blue when it is
   enabled and Ok and in the status colour otherwise (rviz::Display::getViewData), so the
-  Displays panel must show three blue names (grid, TF, Stone; the Stone last) and no name in
-  the warning or error colour. A marker that failed tf2's message filter turns the Stone name
-  red ("Unknown reason for transform failure (frame=[stone])");
+  Displays panel must show three blue names (Board, TF, Stone) and no name in the warning or
+  error colour. A marker that failed tf2's message filter turns the Stone name red ("Unknown
+  reason for transform failure (frame=[stone])"), a board marker that failed it the Board name;
 - rviz's log has no mesh loading error.
 """
 import os
@@ -39,7 +42,10 @@ DARK = 30  # the black stone renders near (12, 12, 14); grid crossings reach (47
 # Names in the Displays tree (right of the icons, left of the check boxes), below the header.
 DISPLAY_NAMES = (44, 85, 170, 400)  # x0, y0, x1, y1
 NODE_TOPICS = ["/tf", "/tf_static", "/stone/pose", "/stone/odom", "/stone/marker", "/stone/info",
-               "/stone/events"]
+               "/stone/events", "/stone/board_markers"]
+# Of the 3D view, at least this share must be lit wood: the camera looks down at the board's
+# centre from 35 cm, so the board fills most of the view.
+BOARD_SHARE = 0.3
 
 
 def read_ppm(data):
@@ -75,6 +81,12 @@ def pixels(width, rgb, box, predicate):
 
 def is_dark(r, g, b):
     return r < DARK and g < DARK and b < DARK
+
+
+def is_wood(r, g, b):
+    """The board's colour (0.86, 0.70, 0.36) under rviz's light: yellow-brown, clearly brighter
+    than the ink of the lines (0.35, 0.26, 0.14), unlike the grey table and background."""
+    return r > 100 and r > g > b and r - b > 50 and g - b > 25
 
 
 # rviz's text colours: Ok display names (40, 120, 197), Warn (192, 128, 0), Error (192, 32, 32);
@@ -113,7 +125,12 @@ def check_image(width, rgb):
         return "a display reports a warning (orange name at y %d)" % warned[0][1]
     ok_names = bands(y for _, y in pixels(width, rgb, names, is_ok_blue))
     if len(ok_names) != 3:
-        return "%d display names in the Ok colour, expected 3 (grid, TF, Stone)" % len(ok_names)
+        return "%d display names in the Ok colour, expected 3 (Board, TF, Stone)" % len(ok_names)
+    wood = len(pixels(width, rgb, VIEW, is_wood))
+    view_area = (VIEW[2] - VIEW[0]) * (VIEW[3] - VIEW[1])
+    if wood < BOARD_SHARE * view_area:
+        return "no board: %.0f %% of the 3D view is board-coloured, expected at least %.0f %%" % (
+            100.0 * wood / view_area, 100.0 * BOARD_SHARE)
     dark = pixels(width, rgb, VIEW, is_dark)
     if len(dark) < 300:
         return "no stone-coloured blob in the 3D view (%d dark pixels)" % len(dark)
@@ -173,9 +190,10 @@ class RvizSmokeTest(unittest.TestCase):
     def start_rviz(self):
         config = os.path.join(rospkg.RosPack().get_path(PKG), "config", "stone.rviz")
         self.start("rviz", ["rviz", "-d", config, "__name:=rviz_smoke"])
-        # Up when its Stone display has subscribed to the marker.
-        self.wait_for(lambda: "/rviz_smoke" in self.subscribers("/stone/marker"), 60,
-                      "rviz did not subscribe to /stone/marker")
+        # Up when its Stone and Board displays have subscribed to their markers.
+        for topic in ("/stone/marker", "/stone/board_markers"):
+            self.wait_for(lambda: "/rviz_smoke" in self.subscribers(topic), 60,
+                          "rviz did not subscribe to %s" % topic)
 
     def start_node(self):
         node = roslib.packages.find_node(PKG, "stone_node")[0]
@@ -216,8 +234,8 @@ class RvizSmokeTest(unittest.TestCase):
         return read_ppm(data) if data else None
 
     def assert_stone_drawn(self, timeout_s=60.0, confirmations=3):
-        """Waits until the stone is drawn and every display is Ok, then wants the same in the
-        next screenshots: a transient state does not pass."""
+        """Waits until the stone and the board are drawn and every display is Ok, then wants the
+        same in the next screenshots: a transient state does not pass."""
         deadline = time.time() + timeout_s
         problem, good = "no screenshot", 0
         while time.time() < deadline and good < confirmations:

@@ -1,6 +1,13 @@
 // Physics health of a recorded run: splits ~odom into segments at each ~events message, then
-// compares every sample with the exact closed form started from the segment's first state and
-// tracks the invariants (|q|, energy, world angular momentum).
+// holds each segment to what must hold in its regime (docs/physics.md, "World"):
+// - flight (start, reset, auto_reset, set_state, set_angular_velocity, time_jump, lift_off, wake,
+//   an impact after which the stone flies): every sample against the exact closed form started
+//   from the event's exact instant and state; |q|, energy, world angular momentum, Jellett's
+//   integral;
+// - contact (slide, roll, rim; an impact that ends in sustained contact): the energy never
+//   rises, Jellett's integral on a cap without rolling resistance and spinning friction;
+// - rest: every sample bitwise identical, velocities exactly zero;
+// and, with the board in ~info, the stone never below the board's top or the table.
 #pragma once
 
 #include <cstdint>
@@ -14,25 +21,40 @@
 namespace virtual_go {
 namespace bag {
 
+// What a segment is held to, by its event's reason (segment_kind).
+enum class SegmentKind { flight, contact, rest };
+std::string segment_kind_name(SegmentKind kind);  // "flight", "contact", "rest"
+
 // Which odom samples belong to one segment and where its prediction starts.
 struct SegmentPlan {
   std::string reason;           // the event's reason, or "first odom" without an event
+  std::string detail;           // the event's detail (contact events), else empty
   bool from_event = false;      // true: starts at events[event_index], else at odom[first]
   std::size_t event_index = 0;  // valid when from_event
-  std::int64_t start_ns = 0;    // sim time of the segment's first state
+  std::int64_t start_ns = 0;    // sim time of the segment's first state, rounded down to a ns
+  double start_offset_s = 0.0;  // [0, 1e-9): the exact start is start_ns + start_offset_s
   std::size_t first = 0;        // odom samples [first, end) belong to this segment
   std::size_t end = 0;
 };
 
-// odom and events in bag order. A sample belongs to the latest event at or before its stamp;
+// odom and events in bag order. A sample belongs to the latest event at or before its stamp (an
+// event with a sub-ns offset lies after a sample at its rounded-down stamp);
 // after a backwards jump of the stamps the next event (a time_jump) starts the new segment.
 // Samples before any event, or stamps that go backwards without an event, start a segment at
 // that sample. Events without samples (for instance after the last odom) are kept, empty.
 std::vector<SegmentPlan> plan_segments(const std::vector<OdomSample>& odom,
                                        const std::vector<SegmentEvent>& events);
 
+// The regime a segment starting with this event is in. An impact is a flight unless the next
+// event comes at the same exact instant (stamp and offset): the World publishes an impact that
+// ends the bouncing (rebound below the Zeno height) as the impact followed at once by the
+// sustained contact's event (docs/physics.md, "World"); such an impact's segment holds no
+// samples (they belong to the later event), so it is a contact segment of no length. Every
+// other reason not listed (slide, roll, rim: contact; rest: rest) starts a flight.
+SegmentKind segment_kind(const std::vector<SegmentEvent>& events, std::size_t index);
+
 // The first field of a sample holding a NaN or infinity ("position", "orientation",
-// "linear velocity", "angular velocity"; events: "angular momentum"), or nullptr.
+// "linear velocity", "angular velocity"; events: "angular momentum", "time offset"), or nullptr.
 const char* non_finite_field(const OdomSample& sample);
 const char* non_finite_field(const SegmentEvent& event);
 
@@ -54,6 +76,15 @@ struct PhysicsSample {
   double orientation_error = 0.0;  // rad vs the closed form; NaN when there is no prediction
   double position_error = 0.0;     // m vs the closed form; NaN when there is no prediction
   double angular_speed = 0.0;      // |omega|, rad/s
+  // The lens's gap above the board's top or the table, m (negative: below it); NaN without the
+  // board in ~info.
+  double gap_m = 0.0;
+  // Contact segments: how far the energy lies above the lowest energy of the segment so far
+  // (its event and earlier samples), relative to the segment's energy scale; else NaN.
+  double energy_rise = 0.0;
+  // |J - J0| / (R max|L|), Jellett's integral J = L . (R e_z -/+ d b) of the cap facing down;
+  // NaN where it is not conserved.
+  double jellett_drift = 0.0;
 };
 
 struct SegmentResult {
@@ -69,6 +100,15 @@ struct SegmentResult {
   double max_momentum_drift = 0.0;
   double max_orientation_error = 0.0;
   double max_position_error = 0.0;
+  SegmentKind kind = SegmentKind::flight;
+  // The contact figures (PhysicsSample), maxima over the segment's samples (and its event).
+  bool board = false;              // the board is in ~info: the gap was measured
+  double min_gap_m = 0.0;          // smallest gap, m
+  double max_energy_rise = 0.0;    // contact segments
+  bool jellett_conserved = false;  // flights; contact on a cap with l_r = l_s = 0
+  double max_jellett_drift = 0.0;
+  std::size_t rest_moved = 0;    // rest: samples not bitwise equal to the first, or moving
+  double rest_max_move_m = 0.0;  // rest: largest |x - x_first|, m (0 when only bits differ)
 };
 
 // Messages with a NaN or infinite value. Such an odom sample gets NaN figures and the rest of

@@ -35,6 +35,17 @@ struct RecordingInfo {
   std::int64_t dt_ns = 0;
   double rate_hz = 0.0;
   Eigen::Vector3d gravity_world = Eigen::Vector3d::Zero();  // m/s^2
+  // The lens (m) and the board the contact checks need (docs/physics.md, "World").
+  double width_m = 0.0;
+  double height_m = 0.0;
+  bool board_enabled = false;
+  Eigen::Vector3d board_size_m = Eigen::Vector3d::Zero();  // x across, y along, z thickness
+  // Contact laws: Jellett's integral holds in sustained contact only without rolling
+  // resistance and spinning friction.
+  double board_rolling_resistance_m = 0.0;
+  double board_spinning_friction_m = 0.0;
+  double table_rolling_resistance_m = 0.0;
+  double table_spinning_friction_m = 0.0;
 };
 
 // One nav_msgs/Odometry as recorded: pose in the world, twist in the stone (body) frame.
@@ -46,11 +57,14 @@ struct OdomSample {
   Eigen::Vector3d angular_velocity_body = Eigen::Vector3d::Zero();
 };
 
-// One virtual_go/StoneEvent: the first state of a segment, world frame.
+// One virtual_go/StoneEvent: the first state of a segment, world frame. The exact instant is
+// stamp_ns + time_offset_s (the stamp is rounded down to a whole ns).
 struct SegmentEvent {
   std::int64_t stamp_ns = 0;
+  double time_offset_s = 0.0;  // [0, 1e-9)
   std::uint32_t segment = 0;
   std::string reason;
+  std::string detail;  // contact events: the finer cause
   Eigen::Vector3d position_world = Eigen::Vector3d::Zero();
   Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
   Eigen::Vector3d velocity_world = Eigen::Vector3d::Zero();

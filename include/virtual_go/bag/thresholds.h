@@ -29,14 +29,36 @@ namespace bag {
 constexpr double kBoundFloor = 1e-9;         // round-off allowance of every figure
 constexpr double kPositionRoundOff = 1e-12;  // per m of the segment's largest |x|
 
-// The "default limits" section of --help, generated from the registry's constants.
+// The limits of the contact checks (docs/physics.md, "World": what holds everywhere), one row
+// each: --help, the option parser, the checks and README.md's table (checked by
+// test_bag_analysis) all read this table.
+enum ContactLimitIndex : int {
+  kEnergyRise = 0,  // contact segments: energy above the lowest so far
+  kPenetration,     // every sample: depth below the board's top or the table
+  kJellettDrift,    // flights, cap contact without rolling resistance or spinning friction
+  kRestMoves,       // rest segments: samples that moved
+  kContactLimitCount
+};
+
+struct ContactLimit {
+  const char* figure;  // the check's name, and the README table's first cell
+  const char* option;  // overrides the default
+  double default_limit;
+  const char* unit;     // "relative", "m", "samples"
+  const char* meaning;  // one line for --help
+};
+const ContactLimit& contact_limit(int index);
+
+// The "default limits" section of --help, generated from the registry's constants and the
+// contact limit table.
 std::string default_limits_text();
 
 struct LimitOverrides {
-  std::optional<double> orientation_error;  // rad
-  std::optional<double> position_error;     // m
-  std::optional<double> energy_drift;       // relative
-  std::optional<double> momentum_drift;     // relative
+  std::optional<double> contact[kContactLimitCount];  // by ContactLimitIndex
+  std::optional<double> orientation_error;            // rad
+  std::optional<double> position_error;               // m
+  std::optional<double> energy_drift;                 // relative
+  std::optional<double> momentum_drift;               // relative
   std::optional<double> quat_norm_error;
   std::size_t max_gaps = 0;     // per periodic topic
   double rate_tolerance = 0.1;  // |mean rate / ~info rate - 1| for the node's periodic topics

@@ -6,6 +6,7 @@
 #include <std_srvs/Trigger.h>
 #include <tf2_ros/transform_broadcaster.h>
 #include <visualization_msgs/Marker.h>
+#include <visualization_msgs/MarkerArray.h>
 
 #include <cstdint>
 #include <string>
@@ -52,6 +53,10 @@ class StoneNode {
   visualization_msgs::Marker marker_;
   bool marker_sent_ = false;
   ros::WallTimer marker_timer_;
+  // With ~board/enabled: the board's markers (~board_markers, latched, world frame), sent and
+  // republished with the stone's marker, for the same reason.
+  ros::Publisher board_markers_pub_;
+  visualization_msgs::MarkerArray board_markers_;
   // Under use_sim_time: says so when ROS time stands still (no /clock).
   ClockWatch clock_watch_;
   ros::WallTimer clock_watch_timer_;

@@ -85,6 +85,8 @@ class StoneSimulation {
   // s, as the integrator sees it: from the whole nanoseconds, not the ~dt parameter.
   double dt_s() const { return checked_.dt_s; }
   const RigidBodyState& initial_state() const { return checked_.initial_state; }
+  // With ~board/enabled the checked world (board, table, materials); otherwise nothing.
+  const std::optional<WorldConfig>& world_config() const { return checked_.world; }
   // Simulated time of the initial state (the first valid ROS time seen); 0 before.
   std::int64_t start_ns() const { return start_ns_; }
   bool started() const { return clock_.started(); }
