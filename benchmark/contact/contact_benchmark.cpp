@@ -225,7 +225,7 @@ int main(int argc, char** argv) {
             if (report.methods[mi].settings.empty() ||
                 (sc.name == "drop_e05" && st.label == "1/60"))
               report.methods[mi].settings = m.settings();
-            r.metrics = measure_run(sc, hull, tr);
+            r.metrics = measure_run(sc, hull, !m.is_peer(), tr);
             if (o.trace == sc.name + "," + m.name() + "," + st.label) write_trace(o.out, tr);
             const bool plot = (sc.name == "drop_e05" || sc.name == "rest" || sc.name == "drop_e08") &&
                               std::count(report.plot_dt_labels.begin(), report.plot_dt_labels.end(), st.label);

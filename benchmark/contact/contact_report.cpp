@@ -328,29 +328,42 @@ void write_plots(const std::string& dir, const ReportInput& in) {
       w << "\n\n";
     }
   }
+  // Height over time: one file with every method, and one per variant group (engine defaults;
+  // tuned engines and ours), each led by the reference (closed form or exact rest).
+  auto variant_of = [&](const std::string& method) {
+    for (const MethodInfo& m : in.methods)
+      if (m.name == method) return m.variant;
+    return std::string();
+  };
   for (const ContactScenario& sc : in.scenarios) {
     for (const std::string& label : in.plot_dt_labels) {
       bool any = false;
       for (const PlotSeries& p : in.series) any |= p.scenario == sc.name && p.dt_label == label;
       if (!any) continue;
-      std::ofstream h(dir + "/contact_height_" + sc.name + "_" + file_label(label) + ".dat");
-      if (sc.drop) {
-        h << "\"closed form\"\n";
-        const int n = 4000;
-        for (int k = 0; k <= n; ++k) {
-          const double t = sc.duration_s * k / n;
-          h << f("%.9g", t) << " " << f("%.9g", sc.drop->height_at(t)) << "\n";
-        }
-        h << "\n\n";
-      } else {
-        h << "\"exact\"\n0 0\n" << f("%.9g", sc.duration_s) << " 0\n\n\n";
-      }
-      for (const std::string& m : names) {
-        for (const PlotSeries& p : in.series) {
-          if (p.scenario != sc.name || p.dt_label != label || p.method != m) continue;
-          h << "\"" << m << "\"\n";
-          for (const auto& [t, z] : p.points) h << f("%.9g", t) << " " << f("%.9g", z) << "\n";
+      for (const std::string group : {"", "_defaults", "_tuned"}) {
+        std::ofstream h(dir + "/contact_height_" + sc.name + "_" + file_label(label) + group +
+                        ".dat");
+        if (sc.drop) {
+          h << "\"closed form\"\n";
+          const int n = 4000;
+          for (int k = 0; k <= n; ++k) {
+            const double t = sc.duration_s * k / n;
+            h << f("%.9g", t) << " " << f("%.9g", sc.drop->height_at(t)) << "\n";
+          }
           h << "\n\n";
+        } else {
+          h << "\"exact\"\n0 0\n" << f("%.9g", sc.duration_s) << " 0\n\n\n";
+        }
+        for (const std::string& m : names) {
+          const std::string v = variant_of(m);
+          if (group == "_defaults" && v != "defaults") continue;
+          if (group == "_tuned" && v == "defaults") continue;
+          for (const PlotSeries& p : in.series) {
+            if (p.scenario != sc.name || p.dt_label != label || p.method != m) continue;
+            h << "\"" << m << "\"\n";
+            for (const auto& [t, z] : p.points) h << f("%.9g", t) << " " << f("%.9g", z) << "\n";
+            h << "\n\n";
+          }
         }
       }
     }

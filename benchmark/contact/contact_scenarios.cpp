@@ -220,7 +220,7 @@ std::vector<ContactScenario> make_contact_scenarios() {
     frozen.description =
         "the slide with the stone's rotation locked (translation only): the textbook "
         "v0^2 / (2 mu g), a test of each friction law";
-    frozen.duration_s = 1.0;
+    frozen.duration_s = 2.0;
     frozen.rotation_frozen = true;
     out.push_back(frozen);
   }

@@ -36,9 +36,10 @@ double damping_ratio_for_restitution(double e) {
 // dampratio 1, becomes timeconst >= 2 dt / dampratio for a bouncing contact; below that the
 // explicit spring is unstable (the drop then gains energy at every bounce).
 double tuned_timeconst(double dt, double zeta) { return std::max(0.002, 2.0 * dt / zeta); }
-// Impedance near 1 (stiff; the sinking at rest is ~ (1 - d) g (timeconst dampratio)^2) and a
-// transition width of 0.1 mm instead of 1 mm (the stone is 9.2 mm thick).
-constexpr const char* kTunedSolimp = "0.99 0.999 0.0001 0.5 2";
+// A constant impedance d = 0.99 (dmin = dmax): the contact is then a linear spring-damper,
+// for which the dampratio mapping above holds, and stiff (the sinking at rest is about
+// (1 - d) g (timeconst dampratio)^2).
+constexpr const char* kTunedSolimp = "0.99 0.99 0.001 0.5 2";
 
 class MujocoContact : public ContactMethod {
  public:

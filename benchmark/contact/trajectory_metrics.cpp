@@ -89,7 +89,8 @@ double flight_intersection(const Flight& f1, const Flight& f2, double g) {
   return (a2 - a1) / (b1 - b2);
 }
 
-RunMetrics measure_run(const ContactScenario& sc, const LensHull& hull, const Trajectory& tr) {
+RunMetrics measure_run(const ContactScenario& sc, const LensHull& hull, bool exact_lens,
+                       const Trajectory& tr) {
   RunMetrics m;
   const auto& s = tr.samples;
   const long n = static_cast<long>(s.size());
@@ -120,7 +121,8 @@ RunMetrics measure_run(const ContactScenario& sc, const LensHull& hull, const Tr
     const Eigen::Quaterniond q = s[k].orientation.normalized();
     const Eigen::Matrix3d r = q.toRotationMatrix();
     const Eigen::Vector3d& x = s[k].position_world;
-    double depth = penetration_depth(sc.board, sc.stone.lowest_point_world(x, q));
+    double depth =
+        exact_lens ? penetration_depth(sc.board, sc.stone.lowest_point_world(x, q)) : 0.0;
     for (const Eigen::Vector3d& v : hull.vertices_body) {
       depth = std::max(depth, penetration_depth(sc.board, x + r * v));
     }
@@ -151,7 +153,15 @@ RunMetrics measure_run(const ContactScenario& sc, const LensHull& hull, const Tr
   m.final_position = end.position_world;
   m.final_tilt_rad = tilt(end.orientation);
   {
-    const Eigen::Vector3d low = sc.stone.lowest_point_world(end.position_world, end.orientation);
+    Eigen::Vector3d low = sc.stone.lowest_point_world(end.position_world, end.orientation);
+    if (!exact_lens) {
+      const Eigen::Quaterniond q = end.orientation.normalized();
+      low = Eigen::Vector3d::Constant(INFINITY);
+      for (const Eigen::Vector3d& v : hull.vertices_body) {
+        const Eigen::Vector3d p = end.position_world + q * v;
+        if (p.z() < low.z()) low = p;
+      }
+    }
     const Eigen::Vector3d half = sc.board.half_extent_m();
     const bool over_board = std::abs(low.x()) <= half.x() && std::abs(low.y()) <= half.y();
     m.final_gap_m = low.z() - (over_board ? sc.board.top_z_m() : sc.board.table_z_m());

@@ -63,7 +63,7 @@ struct RunMetrics {
   // Final pose
   Eigen::Vector3d final_position = Eigen::Vector3d::Constant(NAN);
   double final_tilt_rad = NAN;      // symmetry axis from the vertical
-  double final_gap_m = NAN;         // lowest lens point above the surface under it
+  double final_gap_m = NAN;         // lowest point above the surface under it (< 0: sunk)
   double max_tilt_rad = NAN;        // over the run
   // Slide
   double slip_end_s = NAN;       // contact point slip speed reaches 0
@@ -72,7 +72,11 @@ struct RunMetrics {
   double slip_max_pitch_rad = NAN;
 };
 
-RunMetrics measure_run(const ContactScenario& sc, const LensHull& hull, const Trajectory& tr);
+// Penetration and the final gap are measured on the geometry the method collides: the hull's
+// vertices for the peers (they lie on the lens, so a polyhedron resting on a facet is not
+// counted as sunk), the exact lens (its lowest point, and the vertices) for ours.
+RunMetrics measure_run(const ContactScenario& sc, const LensHull& hull, bool exact_lens,
+                       const Trajectory& tr);
 
 // Penetration depth (m, >= 0) of a world point into the board box or below the table plane.
 double penetration_depth(const BoardSpec& board, const Eigen::Vector3d& p_world);
