@@ -82,12 +82,13 @@ set terminal pngcairo size 1400,600 font ",11" noenhanced
 set output "$out/$png"
 set multiplot layout 1,2 title "stone placed at rest on the board (lowest point at z = 0), dt = ${label/_//} s"
 set xlabel "time (s)"
-set ylabel "centre height minus c (um; < 0: sunk into the board)"
 set key bottom right
 set grid
 set title "engine defaults"
-plot for [i=0:$(($(blocks "$d") - 1))] "$d" index i using 1:(\$2*1e6) with lines lw (i == 0 ? 3 : 1.5) title columnheader(1)
+set ylabel "centre height minus c (mm; < 0: sunk into the board)"
+plot for [i=0:$(($(blocks "$d") - 1))] "$d" index i using 1:(\$2*1e3) with lines lw (i == 0 ? 3 : 1.5) title columnheader(1)
 set title "tuned (and ours)"
+set ylabel "centre height minus c (um; < 0: sunk into the board)"
 plot for [i=0:$(($(blocks "$t") - 1))] "$t" index i using 1:(\$2*1e6) with lines lw (i == 0 ? 3 : 1.5) title columnheader(1)
 unset multiplot
 EOF

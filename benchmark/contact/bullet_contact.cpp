@@ -156,14 +156,15 @@ class BulletContact : public ContactMethod {
     settings_ = {
         {"precision, stepping", "double; stepSimulation(dt, 1, dt): one internal step per dt",
          "btDiscreteDynamicsWorld::stepSimulation (btDynamicsWorld.h)"},
-        {"stone shape", "btConvexHullShape of the lens tessellation (" +
-                            std::to_string(stone_shape_->getNumPoints()) + " points" +
-                            (b.shrink_hull ? ", of the lens shrunk by the margin" : "") + ")",
+        {"stone shape",
+         "btConvexHullShape of the lens tessellation (" +
+             std::to_string(stone_shape_->getNumPoints()) + " points" +
+             (b.shrink_hull ? ", of the lens shrunk by the margin" : "") + ")",
          "User Manual, Collision Shapes and Collision Margin"},
         {"board, table", "btBoxShape (board), btStaticPlaneShape (table), static bodies",
          "User Manual, Collision Shapes"},
-        {"collision margin (m)", "stone " + num(stone_shape_->getMargin()) + ", board " +
-                                     num(board_shape_->getMargin()),
+        {"collision margin (m)",
+         "stone " + num(stone_shape_->getMargin()) + ", board " + num(board_shape_->getMargin()),
          "User Manual, Collision Margin; wiki Scaling The World"},
         {"mass (kg) x scale", num(s.stone.mass_kg) + " x " + num(b.mass_scale),
          "flight benchmark: gyroscopic term skipped below 2.2e-16 determinant"},
@@ -180,8 +181,8 @@ class BulletContact : public ContactMethod {
          std::string(info.m_splitImpulse ? "on" : "off") + ", " +
              num(info.m_splitImpulsePenetrationThreshold),
          "btContactSolverInfo.h; User Manual, Split Impulse"},
-        {"solver iterations, ERP (contact)", std::to_string(info.m_numIterations) + ", " + num(info.m_erp2),
-         "btContactSolverInfo.h"},
+        {"solver iterations, ERP (contact)",
+         std::to_string(info.m_numIterations) + ", " + num(info.m_erp2), "btContactSolverInfo.h"},
         {"sleeping thresholds (m/s, rad/s), time (s)",
          num(stone_->getLinearSleepingThreshold()) + ", " +
              num(stone_->getAngularSleepingThreshold()) + ", " + num(gDeactivationTime),

@@ -21,7 +21,7 @@ struct Options {
   std::string out = ".";
   std::vector<std::string> scenarios, methods;  // empty: all
   int finest_exponent = 16;                     // dt down to 2^-finest
-  double budget_seconds = 0.2;  // timed seconds per (scenario, method, dt)
+  double budget_seconds = 0.2;                  // timed seconds per (scenario, method, dt)
   int min_reps = 3, max_reps = 21;
   std::string trace;  // "scenario,method,dt_label": write that run's grid states to a CSV
 };
@@ -33,7 +33,8 @@ struct Step {
 
 std::vector<Step> make_steps(int finest) {
   std::vector<Step> steps{{1.0 / 30, "1/30"}, {1.0 / 60, "1/60"}};
-  for (int k = 5; k <= finest; ++k) steps.push_back({std::ldexp(1.0, -k), "1/" + std::to_string(1 << k)});
+  for (int k = 5; k <= finest; ++k)
+    steps.push_back({std::ldexp(1.0, -k), "1/" + std::to_string(1 << k)});
   std::sort(steps.begin(), steps.end(), [](const Step& a, const Step& b) { return a.dt > b.dt; });
   return steps;
 }
@@ -94,11 +95,12 @@ void write_trace(const std::string& dir, const Trajectory& tr) {
   std::fprintf(f, "t,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz,asleep\n");
   for (size_t k = 0; k < tr.samples.size(); ++k) {
     const ContactSample& s = tr.samples[k];
-    std::fprintf(f, "%.9g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%d\n",
-                 k * tr.dt_s, s.position_world.x(), s.position_world.y(), s.position_world.z(),
-                 s.orientation.w(), s.orientation.x(), s.orientation.y(), s.orientation.z(),
-                 s.velocity_world.x(), s.velocity_world.y(), s.velocity_world.z(),
-                 s.omega_world.x(), s.omega_world.y(), s.omega_world.z(), tr.asleep[k]);
+    std::fprintf(
+        f, "%.9g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%d\n",
+        k * tr.dt_s, s.position_world.x(), s.position_world.y(), s.position_world.z(),
+        s.orientation.w(), s.orientation.x(), s.orientation.y(), s.orientation.z(),
+        s.velocity_world.x(), s.velocity_world.y(), s.velocity_world.z(), s.omega_world.x(),
+        s.omega_world.y(), s.omega_world.z(), tr.asleep[k]);
   }
   std::fclose(f);
 }
@@ -197,7 +199,8 @@ int main(int argc, char** argv) {
   ReportInput report;
   report.scenarios = scenarios;
   report.plot_dt_labels = {"1/60", "1/1024"};
-  for (const auto& m : methods) report.methods.push_back({m->name(), m->family(), m->variant(), m->version(), {}});
+  for (const auto& m : methods)
+    report.methods.push_back({m->name(), m->family(), m->variant(), m->version(), {}});
 
   const auto start = std::chrono::steady_clock::now();
   for (const ContactScenario& sc : scenarios) {
@@ -227,13 +230,15 @@ int main(int argc, char** argv) {
               report.methods[mi].settings = m.settings();
             r.metrics = measure_run(sc, hull, !m.is_peer(), tr);
             if (o.trace == sc.name + "," + m.name() + "," + st.label) write_trace(o.out, tr);
-            const bool plot = (sc.name == "drop_e05" || sc.name == "rest" || sc.name == "drop_e08") &&
-                              std::count(report.plot_dt_labels.begin(), report.plot_dt_labels.end(), st.label);
+            const bool plot =
+                (sc.name == "drop_e05" || sc.name == "rest" || sc.name == "drop_e08") &&
+                std::count(report.plot_dt_labels.begin(), report.plot_dt_labels.end(), st.label);
             if (plot) {
               PlotSeries ps{sc.name, m.name(), st.label, {}};
               const long stride = std::max(1L, static_cast<long>(tr.samples.size()) / 4000);
               for (size_t k = 0; k < tr.samples.size(); k += stride)
-                ps.points.emplace_back(k * st.dt, tr.samples[k].position_world.z() - sc.stone.half_height_m);
+                ps.points.emplace_back(k * st.dt,
+                                       tr.samples[k].position_world.z() - sc.stone.half_height_m);
               report.series.push_back(std::move(ps));
             }
             tr = Trajectory();  // free the samples before timing
@@ -257,11 +262,12 @@ int main(int argc, char** argv) {
         } catch (const std::exception& e) {
           r.status = std::string("failed: ") + e.what();
         }
-        std::fprintf(stderr, "%-12s %-16s dt %-8s %-30s apex %-9s pen %-9s gains %5ld %9.1f ns/step\n",
-                     sc.name.c_str(), r.method.c_str(), st.label.c_str(), r.status.substr(0, 30).c_str(),
-                     fmt("%.2e", r.metrics.apex_rel_error_max).c_str(),
-                     fmt("%.2e", r.metrics.penetration_rest_m).c_str(), r.metrics.energy_gain_steps,
-                     r.ns_per_step);
+        std::fprintf(
+            stderr, "%-12s %-16s dt %-8s %-30s apex %-9s pen %-9s gains %5ld %9.1f ns/step\n",
+            sc.name.c_str(), r.method.c_str(), st.label.c_str(), r.status.substr(0, 30).c_str(),
+            fmt("%.2e", r.metrics.apex_rel_error_max).c_str(),
+            fmt("%.2e", r.metrics.penetration_rest_m).c_str(), r.metrics.energy_gain_steps,
+            r.ns_per_step);
         const bool not_run = r.status.rfind("not run", 0) == 0;
         report.results.push_back(r);
         if (not_run) {
@@ -280,14 +286,16 @@ int main(int argc, char** argv) {
       }
     }
   }
-  report.elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  report.timing_note = "Timing: each (scenario, method, dt) is one untimed recording pass (every grid "
-                       "state kept for the metrics), then whole-scenario runs from reset() (untimed) "
-                       "through the last grid time, repeated to fill about " +
-                       fmt("%.3g", o.budget_seconds) + " s (at least " + std::to_string(o.min_reps) +
-                       ", at most " + std::to_string(o.max_reps) +
-                       "); the median run time is reported per simulated second and per step. Whole run: " +
-                       fmt("%.0f", report.elapsed_s) + " s.";
+  report.elapsed_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  report.timing_note =
+      "Timing: each (scenario, method, dt) is one untimed recording pass (every grid "
+      "state kept for the metrics), then whole-scenario runs from reset() (untimed) "
+      "through the last grid time, repeated to fill about " +
+      fmt("%.3g", o.budget_seconds) + " s (at least " + std::to_string(o.min_reps) + ", at most " +
+      std::to_string(o.max_reps) +
+      "); the median run time is reported per simulated second and per step. Whole run: " +
+      fmt("%.0f", report.elapsed_s) + " s.";
   write_contact_outputs(o.out, report);
   methods.clear();  // ODE worlds before dCloseODE
   shutdown_contact_peers();

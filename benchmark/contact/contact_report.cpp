@@ -59,25 +59,24 @@ void write_csv(const std::string& dir, const ReportInput& in) {
     auto v = [&](double x) { return ok ? csv(x) : std::string(); };
     const double per_event =
         r.counters.events > 0 ? r.run_s * 1e9 / static_cast<double>(r.counters.events) : NAN;
-    c << r.scenario << "," << r.method << "," << r.family << "," << r.variant << ","
-      << r.dt_label << "," << num17(r.dt) << "," << r.steps << "," << quoted(r.status) << ","
+    c << r.scenario << "," << r.method << "," << r.family << "," << r.variant << "," << r.dt_label
+      << "," << num17(r.dt) << "," << r.steps << "," << quoted(r.status) << ","
       << (ok ? std::to_string(m.bounces_reference) : "") << ","
       << (ok ? std::to_string(m.bounces_detected) : "") << "," << v(m.apex_rel_error_max) << ","
       << v(m.impact_error_max_s) << "," << v(m.rest_reference_s) << ","
       << v(m.rest_reference_cutoff_s) << "," << v(m.settle_time_s) << "," << v(m.sleep_time_s)
       << "," << (ok ? std::to_string(m.energy_gain_steps) : "") << "," << v(m.energy_rise_max_m)
       << "," << v(m.penetration_max_m) << "," << v(m.penetration_rest_m) << ","
-      << v(m.jitter_position_m) << "," << v(m.jitter_rotation_rad) << ","
-      << v(m.jitter_height_m) << "," << v(m.final_position.x()) << ","
-      << v(m.final_position.y()) << "," << v(m.final_position.z()) << "," << v(m.final_gap_m)
-      << "," << v(deg(m.final_tilt_rad)) << "," << v(deg(m.max_tilt_rad)) << ","
-      << v(m.slip_end_s) << "," << v(m.slip_distance_m) << "," << v(deg(m.slip_max_pitch_rad))
-      << "," << v(m.slide_final_m) << ","
+      << v(m.jitter_position_m) << "," << v(m.jitter_rotation_rad) << "," << v(m.jitter_height_m)
+      << "," << v(m.final_position.x()) << "," << v(m.final_position.y()) << ","
+      << v(m.final_position.z()) << "," << v(m.final_gap_m) << "," << v(deg(m.final_tilt_rad))
+      << "," << v(deg(m.max_tilt_rad)) << "," << v(m.slip_end_s) << "," << v(m.slip_distance_m)
+      << "," << v(deg(m.slip_max_pitch_rad)) << "," << v(m.slide_final_m) << ","
       << (r.counters.events >= 0 ? std::to_string(r.counters.events) : "") << ","
       << (r.counters.impacts >= 0 ? std::to_string(r.counters.impacts) : "") << ","
-      << (r.counters.rhs_evaluations >= 0 ? std::to_string(r.counters.rhs_evaluations) : "")
-      << "," << csv(per_event) << "," << csv(r.ns_per_step) << "," << csv(r.ns_per_step_min)
-      << "," << csv(r.ns_per_sim_s) << "," << r.repetitions << "\n";
+      << (r.counters.rhs_evaluations >= 0 ? std::to_string(r.counters.rhs_evaluations) : "") << ","
+      << csv(per_event) << "," << csv(r.ns_per_step) << "," << csv(r.ns_per_step_min) << ","
+      << csv(r.ns_per_sim_s) << "," << r.repetitions << "\n";
   }
   std::ofstream b(dir + "/contact_bounces.csv");
   b << "scenario,method,dt_label,dt_s,bounce,resolvable,apex_ref_m,apex_m,apex_rel_err,"
@@ -157,11 +156,10 @@ std::string row(const ContactScenario& sc, Kind k, const ContactResult& r) {
   const RunMetrics& m = r.metrics;
   switch (k) {
     case Kind::drop:
-      o << m.bounces_detected << " of " << m.bounces_reference << " | "
-        << sci(m.apex_rel_error_max) << " | " << sci(m.impact_error_max_s) << " | "
-        << f("%.4f", m.settle_time_s) << " | " << f("%.3f", m.sleep_time_s) << " | "
-        << gains_cell(m) << " | " << sci(m.penetration_max_m) << " | "
-        << sci(m.penetration_rest_m) << " | " << sci(m.jitter_position_m) << " / "
+      o << m.bounces_detected << " of " << m.bounces_reference << " | " << sci(m.apex_rel_error_max)
+        << " | " << sci(m.impact_error_max_s) << " | " << f("%.4f", m.settle_time_s) << " | "
+        << f("%.3f", m.sleep_time_s) << " | " << gains_cell(m) << " | " << sci(m.penetration_max_m)
+        << " | " << sci(m.penetration_rest_m) << " | " << sci(m.jitter_position_m) << " / "
         << sci(m.jitter_rotation_rad) << " | " << cost_cells(r) << " |\n";
       break;
     case Kind::slide:
@@ -178,11 +176,11 @@ std::string row(const ContactScenario& sc, Kind k, const ContactResult& r) {
         << " | " << cost_cells(r) << " |\n";
       break;
     case Kind::other:
-      o << f("%.4f", m.settle_time_s) << " | " << f("%.3f", m.sleep_time_s) << " | "
-        << where(sc, m) << " | " << sci(m.final_gap_m) << " / " << f("%.2f", deg(m.final_tilt_rad))
-        << " | " << gains_cell(m) << " | " << sci(m.penetration_max_m) << " | "
-        << sci(m.penetration_rest_m) << " | " << sci(m.jitter_position_m) << " / "
-        << sci(m.jitter_rotation_rad) << " | " << cost_cells(r) << " |\n";
+      o << f("%.4f", m.settle_time_s) << " | " << f("%.3f", m.sleep_time_s) << " | " << where(sc, m)
+        << " | " << sci(m.final_gap_m) << " / " << f("%.2f", deg(m.final_tilt_rad)) << " | "
+        << gains_cell(m) << " | " << sci(m.penetration_max_m) << " | " << sci(m.penetration_rest_m)
+        << " | " << sci(m.jitter_position_m) << " / " << sci(m.jitter_rotation_rad) << " | "
+        << cost_cells(r) << " |\n";
       break;
   }
   return o.str();
@@ -193,28 +191,27 @@ std::string reference_line(const ContactScenario& sc) {
   if (sc.drop) {
     const FlatDropReference& d = *sc.drop;
     o << "Closed form: fall " << f("%.3f", d.fall_time_s() * 1e3) << " ms; apex heights "
-      << f("%.4g", d.apex_height_m(1) * 1e3) << ", " << f("%.4g", d.apex_height_m(2) * 1e3)
-      << ", " << f("%.4g", d.apex_height_m(3) * 1e3) << " mm ...; impacts at "
-      << f("%.3f", d.impact_time_s(1) * 1e3) << ", " << f("%.3f", d.impact_time_s(2) * 1e3)
-      << ", " << f("%.3f", d.impact_time_s(3) * 1e3) << " ms ...; "
-      << d.last_bounce_above(1e-6) << " bounces higher than 1 um; rest at "
-      << f("%.3f", d.rest_time_s() * 1e3) << " ms (Zeno limit), "
-      << f("%.3f", d.rest_time_with_cutoff_s(1e-6) * 1e3)
+      << f("%.4g", d.apex_height_m(1) * 1e3) << ", " << f("%.4g", d.apex_height_m(2) * 1e3) << ", "
+      << f("%.4g", d.apex_height_m(3) * 1e3) << " mm ...; impacts at "
+      << f("%.3f", d.impact_time_s(1) * 1e3) << ", " << f("%.3f", d.impact_time_s(2) * 1e3) << ", "
+      << f("%.3f", d.impact_time_s(3) * 1e3) << " ms ...; " << d.last_bounce_above(1e-6)
+      << " bounces higher than 1 um; rest at " << f("%.3f", d.rest_time_s() * 1e3)
+      << " ms (Zeno limit), " << f("%.3f", d.rest_time_with_cutoff_s(1e-6) * 1e3)
       << " ms with the 1 um cut-off (no rebound lower than 1 um).";
   } else if (sc.slide) {
     const SlideReference& s = *sc.slide;
     if (sc.rotation_frozen) {
       o << "Closed form (rotation frozen): stops after v0^2/(2 mu g) = "
-        << f("%.6f", s.frozen_distance_m() * 1e3) << " mm in v0/(mu g) = "
-        << f("%.4f", s.frozen_stop_time_s() * 1e3) << " ms.";
+        << f("%.6f", s.frozen_distance_m() * 1e3)
+        << " mm in v0/(mu g) = " << f("%.4f", s.frozen_stop_time_s() * 1e3) << " ms.";
     } else {
       o << "Reference (free lens, pitch-plane equations integrated by the harness): the contact "
            "point stops slipping at "
         << f("%.3f", s.free_slip_end_s * 1e3) << " ms after the centre moved "
         << f("%.4f", s.free_distance_m * 1e3) << " mm, largest pitch "
-        << f("%.2f", deg(s.free_max_pitch_rad)) << " deg; then it rocks. With rotation frozen: "
-        << f("%.6f", s.frozen_distance_m() * 1e3) << " mm in "
-        << f("%.4f", s.frozen_stop_time_s() * 1e3) << " ms.";
+        << f("%.2f", deg(s.free_max_pitch_rad))
+        << " deg; then it rocks. With rotation frozen: " << f("%.6f", s.frozen_distance_m() * 1e3)
+        << " mm in " << f("%.4f", s.frozen_stop_time_s() * 1e3) << " ms.";
     }
   } else if (sc.name == "rest") {
     o << "Exact: the stone stays where it is (penetration, drift and jitter 0, no energy "
@@ -316,16 +313,17 @@ void write_plots(const std::string& dir, const ReportInput& in) {
   for (const ContactScenario& sc : in.scenarios) {
     if (!sc.drop) continue;
     std::ofstream w(dir + "/contact_wp_" + sc.name + ".dat");
+    // One block per method that has a point (gnuplot skips nothing gracefully).
     for (const std::string& m : names) {
-      w << "\"" << m << "\"\n";
+      std::ostringstream block;
       for (const ContactResult& r : in.results) {
         if (r.scenario != sc.name || r.method != m || !r.ok() || std::isnan(r.ns_per_sim_s) ||
             std::isnan(r.metrics.apex_rel_error_max))
           continue;
-        w << f("%.6g", std::max(r.metrics.apex_rel_error_max, 1e-17)) << " "
-          << f("%.6g", r.ns_per_sim_s) << " " << r.dt_label << "\n";
+        block << f("%.6g", std::max(r.metrics.apex_rel_error_max, 1e-17)) << " "
+              << f("%.6g", r.ns_per_sim_s) << " " << r.dt_label << "\n";
       }
-      w << "\n\n";
+      if (!block.str().empty()) w << "\"" << m << "\"\n" << block.str() << "\n\n";
     }
   }
   // Height over time: one file with every method, and one per variant group (engine defaults;
@@ -398,8 +396,8 @@ void write_goals_and_headline(const std::string& dir, const ReportInput& in) {
     const RunMetrics& m = ours->metrics;
     g << "Ours at dt = 1/60 s (drop_e05): apex error " << sci(m.apex_rel_error_max)
       << " (goal <= 1e-9: " << (m.apex_rel_error_max <= 1e-9 ? "met" : "MISSED")
-      << "), impact time error " << sci(m.impact_error_max_s) << " s (goal <= 1e-12 s: "
-      << (m.impact_error_max_s <= 1e-12 ? "met" : "MISSED") << ").\n";
+      << "), impact time error " << sci(m.impact_error_max_s)
+      << " s (goal <= 1e-12 s: " << (m.impact_error_max_s <= 1e-12 ? "met" : "MISSED") << ").\n";
     long gains = 0;
     double pen = 0, jit = 0;
     for (const ContactResult& r : in.results) {
@@ -410,10 +408,10 @@ void write_goals_and_headline(const std::string& dir, const ReportInput& in) {
         jit = std::max(jit, r.metrics.jitter_position_m);
       }
     }
-    g << "Energy gains over every scenario and dt: " << gains << " (goal 0: "
-      << (gains == 0 ? "met" : "MISSED") << "); resting stone: penetration " << sci(pen)
-      << " m, jitter " << sci(jit) << " m (goal 0: " << (pen == 0 && jit == 0 ? "met" : "MISSED")
-      << ").\n\n";
+    g << "Energy gains over every scenario and dt: " << gains
+      << " (goal 0: " << (gains == 0 ? "met" : "MISSED") << "); resting stone: penetration "
+      << sci(pen) << " m, jitter " << sci(jit)
+      << " m (goal 0: " << (pen == 0 && jit == 0 ? "met" : "MISSED") << ").\n\n";
   }
   // Peers: the resting stone's cost per step against the dropped stone's.
   g << "What a resting stone costs each peer per step, against a step of the flat drop (dt = "
@@ -448,18 +446,20 @@ void write_goals_and_headline(const std::string& dir, const ReportInput& in) {
       h << "| " << mi.name << " | " << (d60 ? d60->status : "not run") << " | | | | | |\n";
       continue;
     }
-    const ContactResult* best = best_over_dt(in.results, "drop_e05", mi.name, &RunMetrics::apex_rel_error_max);
+    const ContactResult* best =
+        best_over_dt(in.results, "drop_e05", mi.name, &RunMetrics::apex_rel_error_max);
     const ContactResult* d1024 = find(in.results, "drop_e05", mi.name, "1/1024");
     const ContactResult* rest = find(in.results, "rest", mi.name, "1/60");
     long gains = 0;
     for (const ContactResult& r : in.results)
-      if (r.method == mi.name && r.dt_label == "1/60" && r.ok()) gains += r.metrics.energy_gain_steps;
+      if (r.method == mi.name && r.dt_label == "1/60" && r.ok())
+        gains += r.metrics.energy_gain_steps;
     h << "| " << mi.name << " | " << sci(d60->metrics.apex_rel_error_max) << " | "
       << (best ? sci(best->metrics.apex_rel_error_max) + " (" + best->dt_label + ")" : "-") << " | "
       << (d1024 && d1024->ok() ? std::to_string(d1024->metrics.bounces_detected) : "-") << " | "
-      << (rest && rest->ok()
-              ? sci(rest->metrics.penetration_rest_m) + " m / " + sci(rest->metrics.jitter_position_m) + " m"
-              : "-")
+      << (rest && rest->ok() ? sci(rest->metrics.penetration_rest_m) + " m / " +
+                                   sci(rest->metrics.jitter_position_m) + " m"
+                             : "-")
       << " | " << gains << " | " << f("%.3g", d60->ns_per_sim_s / 1e3) << " / "
       << (rest && rest->ok() ? f("%.3g", rest->ns_per_sim_s / 1e3) : "-") << " |\n";
   }

@@ -195,8 +195,8 @@ std::vector<ContactScenario> make_contact_scenarios() {
   // Tilted 25 degrees, spinning 40 rad/s about its axis with a 8 rad/s wobble, thrown up and
   // sideways: it lands on the edge of its bottom cap off-centre, slides, rocks and settles.
   {
-    const Eigen::Quaterniond tilt(Eigen::AngleAxisd(25.0 * M_PI / 180.0,
-                                                    Eigen::Vector3d(1.0, 0.3, 0.0).normalized()));
+    const Eigen::Quaterniond tilt(
+        Eigen::AngleAxisd(25.0 * M_PI / 180.0, Eigen::Vector3d(1.0, 0.3, 0.0).normalized()));
     const Eigen::Vector3d axis = tilt * Eigen::Vector3d::UnitZ();
     const Eigen::Vector3d across = tilt * Eigen::Vector3d::UnitX();
     out.push_back(make("toss",
@@ -207,11 +207,11 @@ std::vector<ContactScenario> make_contact_scenarios() {
                        Eigen::Vector3d(0.3, 0.15, 0.4), 40.0 * axis + 8.0 * across, 0.5));
   }
   {
-    ContactScenario sc = make("slide",
-                              "flat on the board (lowest point at z = 0) sliding along +x at "
-                              "0.5 m/s, mu 0.3, restitution 0.5",
-                              2.0, Eigen::Vector3d(-0.1, 0.0, c), flat,
-                              Eigen::Vector3d(0.5, 0.0, 0.0), zero, 0.5);
+    ContactScenario sc =
+        make("slide",
+             "flat on the board (lowest point at z = 0) sliding along +x at "
+             "0.5 m/s, mu 0.3, restitution 0.5",
+             2.0, Eigen::Vector3d(-0.1, 0.0, c), flat, Eigen::Vector3d(0.5, 0.0, 0.0), zero, 0.5);
     sc.slide = SlideReference{0.5, 0.3, g};
     sc.slide->integrate_free_lens(s33);
     out.push_back(sc);

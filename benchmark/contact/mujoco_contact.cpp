@@ -13,7 +13,8 @@
 // Tuned for the stone (XML reference: option, geom): timeconst 2 ms (MuJoCo raises it to 2 dt
 // for coarser steps, flag refsafe), a stiffer impedance whose transition width is scaled to the
 // body, condim 6 with the torsional and rolling friction lengths l_s and l_r, elliptic friction
-// cones and the noslip post-solver against creep.
+// cones and the noslip post-solver against creep, several contact points per mesh pair
+// (multiccd).
 #include <mujoco/mujoco.h>
 #include <unistd.h>
 
@@ -62,12 +63,18 @@ class MujocoContact : public ContactMethod {
     const Eigen::Vector3d& g = s.gravity_world;
     const Eigen::Vector3d& i = s.stone.principal_moments_body;
     xml << "<mujoco model=\"stone_on_board\">\n"
-        << "  <option timestep=\"" << dt << "\" gravity=\"" << g.x() << " " << g.y() << " "
-        << g.z() << "\"";
+        << "  <option timestep=\"" << dt << "\" gravity=\"" << g.x() << " " << g.y() << " " << g.z()
+        << "\"";
     if (tuned_) xml << " cone=\"elliptic\" noslip_iterations=\"10\"";
-    xml << "/>\n  <asset>\n    <mesh name=\"lens\" vertex=\"";
+    xml << ">\n";
+    // Several contact points per geom pair from the convex-convex collider (XML reference,
+    // option/flag multiccd, marked experimental in 2.2): without it a mesh resting on a facet
+    // gets one point per step and wobbles.
+    if (tuned_) xml << "    <flag multiccd=\"enable\"/>\n";
+    xml << "  </option>\n  <asset>\n    <mesh name=\"lens\" vertex=\"";
     const LensHull hull = make_lens_hull(s.stone);
-    for (const Eigen::Vector3d& v : hull.vertices_body) xml << v.x() << " " << v.y() << " " << v.z() << " ";
+    for (const Eigen::Vector3d& v : hull.vertices_body)
+      xml << v.x() << " " << v.y() << " " << v.z() << " ";
     xml << "\"/>\n  </asset>\n  <worldbody>\n"
         << "    <geom name=\"table\" type=\"plane\" size=\"0 0 1\" pos=\"0 0 "
         << s.board.table_z_m() << "\"/>\n"
@@ -91,8 +98,8 @@ class MujocoContact : public ContactMethod {
         << "      <geom name=\"lens\" type=\"mesh\" mesh=\"lens\" priority=\"1\"";
     if (tuned_) {
       xml << " condim=\"6\" friction=\"" << mat.friction << " " << mat.spinning_friction_m << " "
-          << mat.rolling_resistance_m << "\" solref=\"" << tuned_timeconst(dt, zeta) << " "
-          << zeta << "\" solimp=\"" << kTunedSolimp << "\"";
+          << mat.rolling_resistance_m << "\" solref=\"" << tuned_timeconst(dt, zeta) << " " << zeta
+          << "\" solimp=\"" << kTunedSolimp << "\"";
     } else {
       xml << " friction=\"" << mat.friction << " 0.005 0.0001\" solref=\"0.02 " << zeta << "\"";
     }
@@ -128,19 +135,20 @@ class MujocoContact : public ContactMethod {
     const char* cones[] = {"pyramidal", "elliptic"};
     const char* integrators[] = {"Euler", "RK4", "implicit"};
     settings_ = {
-        {"stepping", std::string("mj_step, timestep = dt, integrator ") +
-                         integrators[model_->opt.integrator] + ", solver " +
-                         (model_->opt.solver == mjSOL_NEWTON ? "Newton" : "other") + ", " +
-                         std::to_string(model_->opt.iterations) + " iterations",
+        {"stepping",
+         std::string("mj_step, timestep = dt, integrator ") + integrators[model_->opt.integrator] +
+             ", solver " + (model_->opt.solver == mjSOL_NEWTON ? "Newton" : "other") + ", " +
+             std::to_string(model_->opt.iterations) + " iterations",
          "XML reference, option"},
-        {"stone geom", "mesh of the lens tessellation (" + std::to_string(model_->mesh_vertnum[0]) +
-                           " vertices; collisions use its convex hull), explicit <inertial>, " +
-                           (frozen_ ? "three slide joints" : "free joint"),
+        {"stone geom",
+         "mesh of the lens tessellation (" + std::to_string(model_->mesh_vertnum[0]) +
+             " vertices; collisions use its convex hull), explicit <inertial>, " +
+             (frozen_ ? "three slide joints" : "free joint"),
          "XML reference, mesh and geom; Computation, Collision detection"},
         {"board, table", "box geom (board), plane geom (table)", "XML reference, geom"},
         {"condim; friction (sliding, torsional m, rolling m)",
-         std::to_string(model_->geom_condim[lens]) + "; " + num(gf[0]) + ", " + num(gf[1]) +
-             ", " + num(gf[2]),
+         std::to_string(model_->geom_condim[lens]) + "; " + num(gf[0]) + ", " + num(gf[1]) + ", " +
+             num(gf[2]),
          "Modeling, Contact parameters; XML reference, geom"},
         {"solref (timeconst s, dampratio)",
          num(gs[0]) + ", " + num(gs[1]) +
@@ -148,14 +156,17 @@ class MujocoContact : public ContactMethod {
                      : " (MuJoCo raises timeconst to 2 dt when smaller: refsafe)"),
          "Modeling, Solver parameters and Restitution"},
         {"solimp (dmin, dmax, width m, midpoint, power)",
-         num(gi[0]) + ", " + num(gi[1]) + ", " + num(gi[2]) + ", " + num(gi[3]) + ", " +
-             num(gi[4]),
+         num(gi[0]) + ", " + num(gi[1]) + ", " + num(gi[2]) + ", " + num(gi[3]) + ", " + num(gi[4]),
          "Modeling, Solver parameters"},
         {"friction cone, impratio, noslip iterations",
          std::string(cones[model_->opt.cone]) + ", " + num(model_->opt.impratio) + ", " +
              std::to_string(model_->opt.noslip_iterations),
          "XML reference, option; Modeling, Preventing slip"},
-        {"margin (m), sleeping", num(model_->geom_margin[lens]) + ", none (MuJoCo 2.2 has no sleeping)",
+        {"multiccd (several contacts per mesh pair)",
+         (model_->opt.enableflags & mjENBL_MULTICCD) ? "enabled" : "disabled",
+         "XML reference, option/flag (experimental in 2.2)"},
+        {"margin (m), sleeping",
+         num(model_->geom_margin[lens]) + ", none (MuJoCo 2.2 has no sleeping)",
          "XML reference, geom"},
     };
   }
@@ -197,8 +208,8 @@ class MujocoContact : public ContactMethod {
     char path[] = "/tmp/vg_contact_mujoco_XXXXXX.xml";
     const int fd = mkstemps(path, 4);
     if (fd < 0) throw std::runtime_error("cannot create a temporary file for the MuJoCo model");
-    const bool written = write(fd, model_xml_.data(), model_xml_.size()) ==
-                         static_cast<ssize_t>(model_xml_.size());
+    const bool written =
+        write(fd, model_xml_.data(), model_xml_.size()) == static_cast<ssize_t>(model_xml_.size());
     close(fd);
     char error[1000] = "";
     model_ = written ? mj_loadXML(path, nullptr, error, sizeof error) : nullptr;

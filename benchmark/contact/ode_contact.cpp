@@ -105,7 +105,8 @@ class OdeContact : public ContactMethod {
     points_.clear();
     planes_.clear();
     polygons_.clear();
-    for (const Eigen::Vector3d& v : hull.vertices_body) points_.insert(points_.end(), {v.x(), v.y(), v.z()});
+    for (const Eigen::Vector3d& v : hull.vertices_body)
+      points_.insert(points_.end(), {v.x(), v.y(), v.z()});
     for (const auto& t : hull.triangles) {
       const Eigen::Vector3d &a = hull.vertices_body[t[0]], &b = hull.vertices_body[t[1]],
                             &c = hull.vertices_body[t[2]];
@@ -152,12 +153,13 @@ class OdeContact : public ContactMethod {
     if (surface_.mode & dContactApprox1) mode += " | dContactApprox1";
     if (surface_.mode & dContactRolling) mode += " | dContactRolling";
     settings_ = {
-        {"stepping", "dWorldStep (exact LCP), one step per dt; dSimpleSpace, at most " +
-                         std::to_string(kMaxContacts) + " contacts per pair",
+        {"stepping",
+         "dWorldStep (exact LCP), one step per dt; dSimpleSpace, at most " +
+             std::to_string(kMaxContacts) + " contacts per pair",
          "ODE manual, World (Stepping Functions), Collision Detection"},
-        {"stone geom", "dConvex of the lens tessellation (" +
-                           std::to_string(hull.vertices_body.size()) + " points, " +
-                           std::to_string(hull.triangles.size()) + " faces) on a body",
+        {"stone geom",
+         "dConvex of the lens tessellation (" + std::to_string(hull.vertices_body.size()) +
+             " points, " + std::to_string(hull.triangles.size()) + " faces) on a body",
          "ODE manual, Convex Class"},
         {"board, table", "static dBox (board), dPlane (table)", "ODE manual, Geometry Classes"},
         {"world ERP, CFM", num(dWorldGetERP(world_)) + ", " + num(dWorldGetCFM(world_)),
@@ -167,9 +169,10 @@ class OdeContact : public ContactMethod {
         {"contact max correcting velocity (m/s)", num(dWorldGetContactMaxCorrectingVel(world_)),
          "ODE manual, dWorldSetContactMaxCorrectingVel"},
         {"contact mode", mode, "ODE manual, Contact (dSurfaceParameters)"},
-        {"mu", num(surface_.mu) + ((surface_.mode & dContactApprox1)
-                                       ? " (coefficient: friction <= mu N)"
-                                       : " (force limit in N: friction <= mu)"),
+        {"mu",
+         num(surface_.mu) + ((surface_.mode & dContactApprox1)
+                                 ? " (coefficient: friction <= mu N)"
+                                 : " (force limit in N: friction <= mu)"),
          "ODE manual, Contact: dContactApprox1"},
         {"bounce, bounce_vel (m/s)", num(surface_.bounce) + ", " + num(surface_.bounce_vel),
          "ODE manual, Contact"},

@@ -68,8 +68,8 @@ std::vector<Flight> find_flights(const Trajectory& tr, double g) {
   for (long k = 1; k + 1 < static_cast<long>(s.size()); ++k) {
     const Eigen::Vector3d d2 =
         s[k + 1].position_world - 2.0 * s[k].position_world + s[k - 1].position_world;
-    const bool ballistic = std::abs(d2.z() + gdt2) <= tol && std::abs(d2.x()) <= tol &&
-                           std::abs(d2.y()) <= tol;
+    const bool ballistic =
+        std::abs(d2.z() + gdt2) <= tol && std::abs(d2.x()) <= tol && std::abs(d2.y()) <= tol;
     if (ballistic && run_start < 0) run_start = k;
     if (!ballistic && run_start >= 0) {
       close_run(run_start, k - 1);
@@ -195,10 +195,10 @@ RunMetrics measure_run(const ContactScenario& sc, const LensHull& hull, bool exa
       }
       if (bm.resolvable && b <= 3) {
         ++resolvable;
-        const double ae = std::isnan(bm.apex_measured_m)
-                              ? 1.0
-                              : std::abs(bm.apex_measured_m - bm.apex_reference_m) /
-                                    bm.apex_reference_m;
+        const double ae =
+            std::isnan(bm.apex_measured_m)
+                ? 1.0
+                : std::abs(bm.apex_measured_m - bm.apex_reference_m) / bm.apex_reference_m;
         apex_err = std::max(apex_err, ae);
         const double te = std::isnan(bm.impact_measured_s)
                               ? INFINITY

@@ -31,26 +31,26 @@ std::vector<Flight> find_flights(const Trajectory& tr, double g);
 double flight_intersection(const Flight& before, const Flight& after, double g);
 
 struct BounceMetrics {
-  int bounce = 0;                  // n >= 1
-  double apex_reference_m = NAN;   // e^(2n) h0
-  double apex_measured_m = NAN;    // of the centre, minus c
-  double impact_reference_s = NAN; // impact n, before bounce n
+  int bounce = 0;                   // n >= 1
+  double apex_reference_m = NAN;    // e^(2n) h0
+  double apex_measured_m = NAN;     // of the centre, minus c
+  double impact_reference_s = NAN;  // impact n, before bounce n
   double impact_measured_s = NAN;
   bool resolvable = false;  // the reference flight spans >= 3 dt (enough samples for a fit)
 };
 
 struct RunMetrics {
   // Flat drop
-  std::vector<BounceMetrics> bounces;  // n = 1 .. the reference count above 1 um
-  int bounces_reference = 0;           // bounces higher than 1 um (closed form)
-  int bounces_detected = 0;            // flights after the first, with apex >= 1 um
-  double apex_rel_error_max = NAN;     // over resolvable bounces 1..3 (missing = 1)
-  double impact_error_max_s = NAN;     // over resolvable impacts 1..3
-  double rest_reference_s = NAN;       // closed form, Zeno limit
+  std::vector<BounceMetrics> bounces;    // n = 1 .. the reference count above 1 um
+  int bounces_reference = 0;             // bounces higher than 1 um (closed form)
+  int bounces_detected = 0;              // flights after the first, with apex >= 1 um
+  double apex_rel_error_max = NAN;       // over resolvable bounces 1..3 (missing = 1)
+  double impact_error_max_s = NAN;       // over resolvable impacts 1..3
+  double rest_reference_s = NAN;         // closed form, Zeno limit
   double rest_reference_cutoff_s = NAN;  // with the 1 um cut-off
   // Energy E = m v^2 / 2 + w.I w / 2 + m g z; gains as heights E / (m g)
-  long energy_gain_steps = 0;     // steps where E rose by more than 0.1 nm of height
-  double energy_rise_max_m = 0.0; // largest rise of E above its running minimum
+  long energy_gain_steps = 0;      // steps where E rose by more than 0.1 nm of height
+  double energy_rise_max_m = 0.0;  // largest rise of E above its running minimum
   // Penetration of the hull's vertices and the lens' lowest point into the board or table
   double penetration_max_m = 0.0;   // over the run
   double penetration_rest_m = NAN;  // over the last second
@@ -62,9 +62,9 @@ struct RunMetrics {
   double sleep_time_s = NAN;     // asleep for good; NaN: never slept
   // Final pose
   Eigen::Vector3d final_position = Eigen::Vector3d::Constant(NAN);
-  double final_tilt_rad = NAN;      // symmetry axis from the vertical
-  double final_gap_m = NAN;         // lowest point above the surface under it (< 0: sunk)
-  double max_tilt_rad = NAN;        // over the run
+  double final_tilt_rad = NAN;  // symmetry axis from the vertical
+  double final_gap_m = NAN;     // lowest point above the surface under it (< 0: sunk)
+  double max_tilt_rad = NAN;    // over the run
   // Slide
   double slip_end_s = NAN;       // contact point slip speed reaches 0
   double slip_distance_m = NAN;  // centre displacement along the slide at slip end
