@@ -74,7 +74,9 @@ class BulletContact : public ContactMethod {
   std::string family() const override { return "bullet"; }
   std::string variant() const override { return tuned_ ? "tuned" : "defaults"; }
   std::string version() const override {
-    return "Bullet " + std::to_string(btGetVersion()) + " (Debian libbullet-dev, double precision)";
+    const int v = btGetVersion();  // 324 for 3.24
+    return "Bullet " + std::to_string(v / 100) + "." + std::to_string(v % 100) +
+           " (Debian libbullet-dev, double precision)";
   }
 
   void reset(const ContactScenario& s, double dt) override {

@@ -24,6 +24,7 @@ struct Options {
   double budget_seconds = 0.2;                  // timed seconds per (scenario, method, dt)
   int min_reps = 3, max_reps = 21;
   std::string trace;  // "scenario,method,dt_label": write that run's grid states to a CSV
+  bool self_check = false;
 };
 
 struct Step {
@@ -105,6 +106,45 @@ void write_trace(const std::string& dir, const Trajectory& tr) {
   std::fclose(f);
 }
 
+// The harness measuring an exact method: the closed form sampled on the grid must come out
+// exact (the goals of ours are stated against these same metrics).
+int self_check(const Options& o) {
+  std::unique_ptr<ContactMethod> exact = make_closed_form_drop();
+  int failures = 0;
+  for (const ContactScenario& sc : make_contact_scenarios()) {
+    if (!sc.drop) continue;
+    const LensHull hull = make_lens_hull(sc.stone);
+    for (const Step& st : make_steps(o.finest_exponent)) {
+      Trajectory tr;
+      std::string status;
+      const long steps = std::lround(sc.duration_s / st.dt);
+      if (!record(*exact, sc, st.dt, steps, tr, status)) {
+        std::fprintf(stderr, "self-check %s %s: %s\n", sc.name.c_str(), st.label.c_str(),
+                     status.c_str());
+        ++failures;
+        continue;
+      }
+      const RunMetrics m = measure_run(sc, hull, true, tr);
+      const double rest_error =
+          std::abs(m.sleep_time_s - m.rest_reference_cutoff_s);  // within one step
+      const bool ok = !(m.apex_rel_error_max > 1e-9) && !(m.impact_error_max_s > 1e-12) &&
+                      m.energy_gain_steps == 0 && m.penetration_max_m == 0.0 &&
+                      m.jitter_position_m == 0.0 && rest_error <= st.dt;
+      if (!ok) ++failures;
+      std::fprintf(stderr,
+                   "self-check %-8s dt %-8s apex %-9s impact %-9s s  bounces %2d of %2d  gains "
+                   "%ld  penetration %g  asleep %.6f s (closed form %.6f s)  %s\n",
+                   sc.name.c_str(), st.label.c_str(), fmt("%.2e", m.apex_rel_error_max).c_str(),
+                   fmt("%.2e", m.impact_error_max_s).c_str(), m.bounces_detected,
+                   m.bounces_reference, m.energy_gain_steps, m.penetration_max_m, m.sleep_time_s,
+                   m.rest_reference_cutoff_s, ok ? "ok" : "FAILED");
+    }
+  }
+  std::fprintf(stderr, "self-check: %s\n",
+               failures == 0 ? "the closed form measures exact" : "FAILED");
+  return failures == 0 ? 0 : 1;
+}
+
 void print_usage() {
   std::printf(
       "usage: contact_benchmark [--out DIR] [--scenario NAME]... [--method NAME]...\n"
@@ -119,6 +159,10 @@ void print_usage() {
       "  --quick           --finest 10, --budget 0.02, --min-reps 1 (a smoke run)\n"
       "  --budget S        timed seconds per scenario, method and dt (default 0.2)\n"
       "  --min-reps N      repetitions at least (default 3; at most 21)\n"
+      "  --self-check      measure the flat drop's closed form itself (sampled on the grid\n"
+      "                    behind the method interface) at every dt and fail unless the\n"
+      "                    metrics find it exact (apex 1e-9, impact 1e-12 s, no energy gain);\n"
+      "                    writes nothing\n"
       "  --trace S,M,DT    also write run (scenario S, method M, dt label DT, e.g.\n"
       "                    drop_e05,bullet_tuned,1/60) state by state to DIR/contact_trace.csv\n");
 }
@@ -158,6 +202,8 @@ int main(int argc, char** argv) {
         o.budget_seconds = std::stod(value());
         if (!(o.budget_seconds >= 0.0 && o.budget_seconds <= 100.0))
           throw std::invalid_argument("--budget must be 0 .. 100 s");
+      } else if (a == "--self-check") {
+        o.self_check = true;
       } else if (a == "--trace") {
         o.trace = value();
       } else if (a == "--min-reps") {
@@ -174,6 +220,7 @@ int main(int argc, char** argv) {
     }
   }
 
+  if (o.self_check) return self_check(o);
   init_contact_peers();
   std::vector<std::unique_ptr<ContactMethod>> all;
   all.push_back(make_ours_contact());

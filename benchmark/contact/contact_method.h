@@ -66,8 +66,10 @@ struct FlatDropReference {
   // the stone is at rest from there on, slightly before rest_time_s().
   int last_bounce_above(double h_min_m) const;
   double rest_time_with_cutoff_s(double h_min_m) const;
-  // Height of the lowest point above the board at time t (piecewise parabolas; 0 after rest).
+  // Height of the lowest point above the board at time t and its rate (piecewise parabolas;
+  // 0 after the impact whose rebound would be lower than 1 um).
   double height_at(double t) const;
+  double velocity_at(double t) const;
 };
 
 // Sliding flat at v0 with friction mu: with rotation frozen s = v0^2 / (2 mu g) in
@@ -168,6 +170,10 @@ struct LensHull {
 LensHull make_lens_hull(const StoneSpec& stone);
 
 std::unique_ptr<ContactMethod> make_ours_contact();
+// The flat drop's closed form sampled on the grid, behind the same interface: what an exact
+// method reports. Only for --self-check (the metrics must find it exact); refuses the other
+// scenarios.
+std::unique_ptr<ContactMethod> make_closed_form_drop();
 std::unique_ptr<ContactMethod> make_bullet_contact(bool tuned);
 std::unique_ptr<ContactMethod> make_ode_contact(bool tuned);
 std::unique_ptr<ContactMethod> make_mujoco_contact(bool tuned);

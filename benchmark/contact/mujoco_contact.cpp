@@ -50,7 +50,9 @@ class MujocoContact : public ContactMethod {
   std::string family() const override { return "mujoco"; }
   std::string variant() const override { return tuned_ ? "tuned" : "defaults"; }
   std::string version() const override {
-    return "MuJoCo " + std::to_string(mj_version()) + " (Debian libmujoco-dev)";
+    const int v = mj_version();  // 222 for 2.2.2
+    return "MuJoCo " + std::to_string(v / 100) + "." + std::to_string(v / 10 % 10) + "." +
+           std::to_string(v % 10) + " (Debian libmujoco-dev)";
   }
 
   void reset(const ContactScenario& s, double dt) override {

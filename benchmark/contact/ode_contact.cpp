@@ -59,8 +59,8 @@ class OdeContact : public ContactMethod {
   std::string family() const override { return "ode"; }
   std::string variant() const override { return tuned_ ? "tuned" : "defaults"; }
   std::string version() const override {
-    return std::string("ODE 0.16 (Debian libode-dev, double precision; ") + dGetConfiguration() +
-           ")";
+    return std::string("ODE (Debian libode-dev, double precision; configuration: ") +
+           dGetConfiguration() + ")";
   }
 
   void reset(const ContactScenario& s, double dt) override {
@@ -150,8 +150,8 @@ class OdeContact : public ContactMethod {
     }
 
     std::string mode = "dContactBounce";
-    if (surface_.mode & dContactApprox1) mode += " | dContactApprox1";
-    if (surface_.mode & dContactRolling) mode += " | dContactRolling";
+    if (surface_.mode & dContactApprox1) mode += " + dContactApprox1";
+    if (surface_.mode & dContactRolling) mode += " + dContactRolling";
     settings_ = {
         {"stepping",
          "dWorldStep (exact LCP), one step per dt; dSimpleSpace, at most " +

@@ -58,8 +58,47 @@ class OursContact : public ContactMethod {
   }
 };
 
+class ClosedFormDrop : public ContactMethod {
+ public:
+  std::string name() const override { return "closed_form"; }
+  std::string family() const override { return "reference"; }
+  std::string variant() const override { return "closed form"; }
+  bool is_peer() const override { return false; }
+  std::string version() const override { return "the flat drop's closed form"; }
+  void reset(const ContactScenario& s, double dt) override {
+    if (!s.drop) throw ContactNotRun("not run: no closed form for this scenario");
+    drop_ = *s.drop;
+    c_ = s.stone.half_height_m;
+    x0_ = s.initial.position_world;
+    dt_ = dt;
+    k_ = 0;
+  }
+  void advance() override { ++k_; }
+  ContactSample sample() const override {
+    const double t = static_cast<double>(k_) * dt_;
+    ContactSample smp;
+    smp.position_world = Eigen::Vector3d(x0_.x(), x0_.y(), c_ + drop_.height_at(t));
+    smp.velocity_world = Eigen::Vector3d(0.0, 0.0, drop_.velocity_at(t));
+    return smp;
+  }
+  bool asleep() const override {
+    return static_cast<double>(k_) * dt_ >= drop_.rest_time_with_cutoff_s(1e-6);
+  }
+  ContactCounters counters() const override { return {}; }
+  std::vector<Setting> settings() const override { return {}; }
+
+ private:
+  FlatDropReference drop_;
+  double c_ = 0.0, dt_ = 0.0;
+  Eigen::Vector3d x0_ = Eigen::Vector3d::Zero();
+  long k_ = 0;
+};
+
 }  // namespace
 
 std::unique_ptr<ContactMethod> make_ours_contact() { return std::make_unique<OursContact>(); }
+std::unique_ptr<ContactMethod> make_closed_form_drop() {
+  return std::make_unique<ClosedFormDrop>();
+}
 
 }  // namespace vg_bench
