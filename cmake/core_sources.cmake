@@ -32,4 +32,11 @@ set(VG_CORE_SOURCES
   src/contact/plane_region.cpp
   src/contact/lens_on_plane.cpp
   src/contact/plane_contact_dynamics.cpp
-  src/contact/plane_contact.cpp)
+  src/contact/plane_contact.cpp
+  src/world/stone_mode.cpp
+  src/world/world_event.cpp
+  src/world/support_plane.cpp
+  src/world/nonsmooth_contact.cpp
+  src/world/flight_track.cpp
+  src/world/world_config.cpp
+  src/world/world.cpp)

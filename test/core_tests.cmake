@@ -28,7 +28,13 @@ foreach(core_test
     contact/test_plane_region
     contact/test_lens_on_plane
     contact/test_plane_contact_dynamics
-    contact/test_plane_contact)
+    contact/test_plane_contact
+    world/test_world_event
+    world/test_support_plane
+    world/test_flight_track
+    world/test_nonsmooth_contact
+    world/test_world
+    world/test_world_edges)
   get_filename_component(target ${core_test} NAME)
   catkin_add_gtest(${target} test/${core_test}.cpp)
   target_link_libraries(${target} virtual_go_core GTest::gtest_main)

@@ -49,8 +49,9 @@ enum class Trigger {
   rolling_bound,
   spinning_zero,
   spinning_bound,
+  clearance,
 };
-constexpr int kTriggerCount = 9;
+constexpr int kTriggerCount = 10;
 
 struct EventValues {
   std::array<double, kTriggerCount> g{};
@@ -123,6 +124,7 @@ const char* plane_contact_event_name(PlaneContactEvent event) {
       {PlaneContactEvent::rim_to_cap, "rim_to_cap"},
       {PlaneContactEvent::lift_off, "lift_off"},
       {PlaneContactEvent::left_region, "left_region"},
+      {PlaneContactEvent::obstacle, "obstacle"},
       {PlaneContactEvent::rest, "rest"},
   };
   for (const auto& [e, name] : kNames) {
@@ -167,6 +169,14 @@ class PlaneContact::Impl {
 
   void rhs(const OdeState& y, OdeState& dydt);
   PlaneContactForces solve(const PlaneContactMode& mode, const PlaneContactKinematics& k) const;
+  // The mode with the reference of each part marked `slaved` replaced by the direction its
+  // motion is slaved to at k (see slaved_direction).
+  PlaneContactMode slaved(const PlaneContactMode& mode, const PlaneContactKinematics& k) const;
+  // Newton's method for the zero of the direction residual near the part's reference. `decide`:
+  // also require what makes a part slaved at a step's start (a stable zero); within a step only
+  // convergence is required, so the law stays smooth.
+  bool slaved_direction(const PlaneContactMode& mode, const PlaneContactKinematics& k,
+                        bool tangential, bool decide, Vector3& direction) const;
   double energy(const PlaneContactKinematics& k) const { return plane_contact_energy(setup_, k); }
   PlaneContactKinematics capped(const PlaneContactKinematics& k, const PlaneContactMode& mode,
                                 double cap) const;
@@ -245,8 +255,8 @@ PlaneContact::Impl::Impl(const PlaneContactSetup& setup, const PlaneRegion& regi
   if (!(std::abs(gap) <= options.gap_tolerance_m)) {
     throw InvalidArgument(
         "state", "contact start state: gap to the plane z = " + format_value(setup.plane_height_m) +
-        " m is " + format_value(gap) + " m, must be within +/-" +
-        format_value(options.gap_tolerance_m) + " m (the stone must touch the plane)");
+                     " m is " + format_value(gap) + " m, must be within +/-" +
+                     format_value(options.gap_tolerance_m) + " m (the stone must touch the plane)");
   }
   const Vector3 omega =
       setup.model.angular_velocity_world(state.orientation, state.angular_momentum_world);
@@ -260,14 +270,25 @@ PlaneContact::Impl::Impl(const PlaneContactSetup& setup, const PlaneRegion& regi
   const double normal_velocity = k.velocity_world.z() + omega.cross(k.offset_world).z();
   if (!(std::abs(normal_velocity) <= options.normal_velocity_tolerance_m_s)) {
     throw InvalidArgument("state", "contact start state: normal velocity of the contact point is " +
-                          format_value(normal_velocity) + " m/s, must be within +/-" +
-                          format_value(options.normal_velocity_tolerance_m_s) +
-                          " m/s (an impact or a flight, not a sustained contact)");
+                                       format_value(normal_velocity) + " m/s, must be within +/-" +
+                                       format_value(options.normal_velocity_tolerance_m_s) +
+                                       " m/s (an impact or a flight, not a sustained contact)");
   }
   const Vector3 contact_point = k.position_world + k.offset_world;
   if (!region.contains(contact_point.head<2>())) {
-    throw InvalidArgument("state", "contact start state: the contact point " + format_vector(contact_point) +
-                          " is outside the plane's region");
+    throw InvalidArgument("state", "contact start state: the contact point " +
+                                       format_vector(contact_point) +
+                                       " is outside the plane's region");
+  }
+  if (options.clearance_m) {
+    const double clearance = options.clearance_m(LensPose{k.position_world, k.axis_world});
+    if (!(clearance > 0.0)) {
+      throw InvalidArgument("state",
+                            "contact start state: the clearance to the other obstacles is " +
+                                format_value(clearance) +
+                                " m, must be positive (the stone touches more than the "
+                                "plane)");
+    }
   }
   // Remove u_n by a plastic normal impulse (M-orthogonal projection: energy can only fall), then
   // never let the imposed height raise the energy above the given state's.
@@ -313,10 +334,66 @@ PlaneContactForces PlaneContact::Impl::solve(const PlaneContactMode& mode,
   return f;
 }
 
+bool PlaneContact::Impl::slaved_direction(const PlaneContactMode& mode,
+                                          const PlaneContactKinematics& k, bool tangential,
+                                          bool decide, Vector3& direction) const {
+  // Near zero motion the direction of a sliding part is a fast variable: with the law opposing
+  // v / |v|, theta' = residual(theta) / |v| where residual = (s x a(s))_z is the part's
+  // acceleration a across the direction s. As |v| -> 0 the direction is slaved to the stable
+  // zero of the residual (the consistent sliding direction, residual' < 0) and the equations for
+  // theta become stiff (rate ~ mu N / (m |v|)). Inside the direction layer the law therefore
+  // opposes that direction itself, found by Newton's method from the reference: a motion growing
+  // there leaves the layer already aligned with it, one shrinking there stops along it (the
+  // stop event, v . reference = 0, is located as before). Without a stable zero near the
+  // reference (Newton diverging or a repelling zero) the part keeps its fixed reference.
+  const ContactLawPart& part = tangential ? mode.tangential : mode.rolling;
+  auto residual = [&](double angle, double* along) {
+    PlaneContactMode trial = mode;
+    ContactLawPart& p = tangential ? trial.tangential : trial.rolling;
+    p.reference_world = horizontal_unit(angle);
+    ++counters_.extra_solves;
+    const PlaneContactForces f = solve_plane_contact(setup_, trial, k);
+    const Vector3 acc = tangential ? f.slip_acceleration_world
+                                   : Vector3(f.angular_acceleration_world.x(),
+                                             f.angular_acceleration_world.y(), 0.0);
+    const Vector3 s = p.reference_world;
+    if (along) *along = s.dot(acc);
+    return f.solved ? s.x() * acc.y() - s.y() * acc.x() : std::numeric_limits<double>::quiet_NaN();
+  };
+  const double start = std::atan2(part.reference_world.y(), part.reference_world.x());
+  double angle = start;
+  constexpr double kDelta = 1e-7;  // rad, for the derivative
+  bool converged = false;
+  for (int i = 0; i < 8 && !converged; ++i) {
+    const double r = residual(angle, nullptr);
+    const double slope = (residual(angle + kDelta, nullptr) - r) / kDelta;
+    if (decide ? !(slope < 0.0) : !(slope != 0.0)) return false;
+    const double step = -r / slope;
+    angle += step;
+    if (!(std::abs(angle - start) < 0.5)) return false;  // not near the reference
+    converged = std::abs(step) <= 1e-12;
+  }
+  if (!converged) return false;
+  direction = horizontal_unit(angle);
+  return true;
+}
+
+PlaneContactMode PlaneContact::Impl::slaved(const PlaneContactMode& mode,
+                                            const PlaneContactKinematics& k) const {
+  PlaneContactMode out = mode;
+  if (mode.tangential.law == ContactLaw::sliding && mode.tangential.slaved) {
+    slaved_direction(mode, k, true, false, out.tangential.reference_world);
+  }
+  if (mode.rolling.law == ContactLaw::sliding && mode.rolling.slaved) {
+    slaved_direction(out, k, false, false, out.rolling.reference_world);
+  }
+  return out;
+}
+
 void PlaneContact::Impl::rhs(const OdeState& y, OdeState& dydt) {
   ++counters_.rhs_evaluations;
   const PlaneContactKinematics k = decode(setup_, mode_, y);
-  const PlaneContactForces f = solve(mode_, k);
+  const PlaneContactForces f = solve(slaved(mode_, k), k);
   const Vector3& v = k.velocity_world;
   const Vector3& w = k.angular_velocity_world;
   dydt[kX] = v.x();
@@ -412,6 +489,8 @@ double PlaneContact::Impl::event_value(Trigger trigger, const PlaneContactKinema
       }
     case Trigger::region:
       return region_.margin_m((k.position_world + k.offset_world).head<2>());
+    case Trigger::clearance:
+      return options_.clearance_m(LensPose{k.position_world, k.axis_world});
     case Trigger::tangential_zero:
       return k.slip_velocity().dot(mode.tangential.reference_world);
     case Trigger::rolling_zero:
@@ -421,7 +500,7 @@ double PlaneContact::Impl::event_value(Trigger trigger, const PlaneContactKinema
     default:
       break;
   }
-  const PlaneContactForces f = forces ? *forces : solve(mode, k);
+  const PlaneContactForces f = forces ? *forces : solve(slaved(mode, k), k);
   switch (trigger) {
     case Trigger::lift_off:
       return f.normal_force_n;
@@ -444,6 +523,7 @@ EventValues PlaneContact::Impl::event_values(const PlaneContactKinematics& k,
   activate(Trigger::part_switch);
   activate(Trigger::lift_off);
   if (region_.kind != PlaneRegion::Kind::whole_plane) activate(Trigger::region);
+  if (options_.clearance_m) activate(Trigger::clearance);
   const std::pair<ContactLaw, std::pair<Trigger, Trigger>> parts[] = {
       {mode.tangential.law, {Trigger::tangential_zero, Trigger::tangential_bound}},
       {mode.rolling.law, {Trigger::rolling_zero, Trigger::rolling_bound}},
@@ -452,7 +532,7 @@ EventValues PlaneContact::Impl::event_values(const PlaneContactKinematics& k,
     if (law == ContactLaw::sliding) activate(triggers.first);
     if (law == ContactLaw::stuck) activate(triggers.second);
   }
-  const PlaneContactForces f = solve(mode, k);
+  const PlaneContactForces f = solve(slaved(mode, k), k);
   for (int i = 0; i < kTriggerCount; ++i) {
     if (e.active[i]) e.g[i] = event_value(static_cast<Trigger>(i), k, mode, &f);
   }
@@ -668,13 +748,25 @@ void PlaneContact::Impl::start_mode(const Choice& choice, double t, double energ
 
 void PlaneContact::Impl::refresh_references() {
   const PlaneContactKinematics k = decode(setup_, mode_, y_);
-  auto refresh = [](ContactLawPart& part, const Vector3& velocity, double zero_speed) {
-    if (part.law == ContactLaw::sliding && velocity.norm() > zero_speed) {
+  // Outside the direction layer the reference is the motion's direction; inside it, a part whose
+  // direction has a stable zero near the reference is slaved to it for this step (the decision
+  // is taken here, once per step, so that the law stays smooth within the step).
+  auto refresh = [&](bool tangential, const Vector3& velocity, double layer) {
+    ContactLawPart& part = tangential ? mode_.tangential : mode_.rolling;
+    part.slaved = false;
+    if (part.law != ContactLaw::sliding) return;
+    if (velocity.norm() > layer) {
       part.reference_world = velocity.normalized();
+      return;
+    }
+    Vector3 direction;
+    if (slaved_direction(mode_, k, tangential, true, direction)) {
+      part.reference_world = direction;
+      part.slaved = true;
     }
   };
-  refresh(mode_.tangential, k.slip_velocity(), kSlipDirectionLayer);
-  refresh(mode_.rolling, k.rolling_velocity(), kRollDirectionLayer);
+  refresh(true, k.slip_velocity(), kSlipDirectionLayer);
+  refresh(false, k.rolling_velocity(), kRollDirectionLayer);
   if (mode_.spinning.law == ContactLaw::sliding &&
       std::abs(k.spin_velocity()) > kZeroAngularSpeed) {
     mode_.spinning.reference_world = Vector3(0.0, 0.0, k.spin_velocity() > 0.0 ? 1.0 : -1.0);
@@ -795,8 +887,9 @@ PlaneContact::Impl::Sample PlaneContact::Impl::sample(double t) const {
     return {capped(k, it->mode, it->energy_begin), it->mode};
   }
   throw InvalidArgument("t_s", "contact state requested at t = " + format_value(t) +
-                        " s, outside the available range [" + format_value(window_start_) + ", " +
-                        format_value(reached_) + "] s");
+                                   " s, outside the available range [" +
+                                   format_value(window_start_) + ", " + format_value(reached_) +
+                                   "] s");
 }
 
 RigidBodyState PlaneContact::Impl::to_rigid_body_state(const Sample& s) const {
@@ -817,7 +910,7 @@ PlaneContactOutcome PlaneContact::Impl::outcome(double t, PlaneContactEvent even
   o.state = to_rigid_body_state(s);
   o.mode = s.mode;
   o.finished = event == PlaneContactEvent::rest || event == PlaneContactEvent::lift_off ||
-               event == PlaneContactEvent::left_region;
+               event == PlaneContactEvent::left_region || event == PlaneContactEvent::obstacle;
   return o;
 }
 
@@ -826,15 +919,16 @@ void PlaneContact::Impl::require_sample_time(double t) const {
   if (finished_ && finished_->event == PlaneContactEvent::rest && t >= finished_->time) return;
   if (!(t >= window_start_ && t <= reached_)) {
     throw InvalidArgument("t_s", "contact state requested at t = " + format_value(t) +
-                          " s, outside the available range [" + format_value(window_start_) + ", " +
-                          format_value(reached_) + "] s");
+                                     " s, outside the available range [" +
+                                     format_value(window_start_) + ", " + format_value(reached_) +
+                                     "] s");
   }
 }
 
 PlaneContactForces PlaneContact::Impl::forces_at(double t) const {
   require_sample_time(t);
   const Sample s = sample(t);
-  return solve_plane_contact(setup_, s.mode, s.kinematics);
+  return solve_plane_contact(setup_, slaved(s.mode, s.kinematics), s.kinematics);
 }
 
 std::optional<PlaneContactOutcome> PlaneContact::Impl::process(const PendingEvent& event) {
@@ -864,6 +958,8 @@ std::optional<PlaneContactOutcome> PlaneContact::Impl::process(const PendingEven
       return finish(PlaneContactEvent::lift_off, before);
     case Trigger::region:
       return finish(PlaneContactEvent::left_region, before);
+    case Trigger::clearance:
+      return finish(PlaneContactEvent::obstacle, before);
     case Trigger::part_switch:
       if (old_mode.part == LensPart::rim) {
         part = before.kinematics.axis_world.z() > 0.0 ? LensPart::bottom_cap : LensPart::top_cap;
@@ -938,8 +1034,8 @@ PlaneContactOutcome PlaneContact::Impl::advance(double t_end) {
   require_finite("contact advance time", t_end);
   if (t_end < reached_) {
     throw InvalidArgument("t_end_s", "contact advance time " + format_value(t_end) +
-                          " s is before the time already reached, " + format_value(reached_) +
-                          " s");
+                                         " s is before the time already reached, " +
+                                         format_value(reached_) + " s");
   }
   if (initial_outcome_) {
     PlaneContactOutcome o = *initial_outcome_;
@@ -955,10 +1051,10 @@ PlaneContactOutcome PlaneContact::Impl::advance(double t_end) {
       return o;
     }
     if (t_end > finished_->time) {
-      throw InvalidArgument("t_end_s", std::string("contact phase ended at t = ") +
-                            format_value(finished_->time) + " s (" +
-                            plane_contact_event_name(finished_->event) +
-                            "); it cannot be advanced to " + format_value(t_end) + " s");
+      throw InvalidArgument(
+          "t_end_s", std::string("contact phase ended at t = ") + format_value(finished_->time) +
+                         " s (" + plane_contact_event_name(finished_->event) +
+                         "); it cannot be advanced to " + format_value(t_end) + " s");
     }
     return outcome(finished_->time, finished_->event, finished_->sample);
   }

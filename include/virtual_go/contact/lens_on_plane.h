@@ -1,6 +1,7 @@
 // Where a lens touches a horizontal plane below it and how that point moves: the kinematics of
-// sustained contact. The contact point P is the lens point lowest along the world z axis; its
-// offset r = P - x_G depends only on the symmetry axis b = R(q) e_z:
+// sustained contact (docs/physics.md, "Sustained contact"). The contact point P is the lens point
+// lowest along the world z axis; its offset r = P - x_G depends only on the symmetry axis
+// b = R(q) e_z:
 //   cap (sigma = +1 bottom, -1 top): r = sigma d b - R e_z             (P below the sphere centre)
 //   rim:                             r = -a e, e = (e_z - b_z b) / |e_z - b_z b|  (lowest rim
 //   point)

@@ -1,7 +1,7 @@
 // The contact law's parameters for one pair of surfaces (stone on board, stone on table).
 // No published measurements of Go stones exist: the defaults are unmeasured placeholders, to
 // be fitted (drop sound for the restitution, tilt-to-slip angle for the friction, video of the
-// rocking and spin decay for the two lengths). See docs/physics.md, "Contact".
+// rocking and spin decay for the two lengths). See docs/physics.md, "Contact materials".
 #pragma once
 
 #include <string>

@@ -1,6 +1,7 @@
 // Sustained contact of one stone with a horizontal plane z = h0 (the board's top face or the
 // table): sliding, rolling and rocking, spinning, on a cap or on the rim, with Coulomb sliding
-// friction and set-valued rolling resistance and spinning friction (plane_contact_dynamics.h).
+// friction and set-valued rolling resistance and spinning friction (plane_contact_dynamics.h;
+// docs/physics.md, "Sustained contact").
 //
 // The phase starts from a state already on the plane (gap 0, normal velocity 0 after an impact,
 // or a stone placed there) and integrates the Newton-Euler equations in coordinates where the
@@ -16,6 +17,8 @@
 //   cap_to_rim / rim_to_cap            |b_z| crosses d/R (continuous: no impulse)
 //   lift_off                           N reaches 0: the stone flies (the phase ends)
 //   left_region                        the contact point leaves the plane's region (ends)
+//   obstacle                           the optional clearance to other obstacles reaches 0:
+//                                      the stone touches something besides the plane (ends)
 //   rest                               everything stuck, velocities exactly 0 and the static
 //                                      inequalities hold: the state is frozen (ends)
 // When several parts have zero motion at once the mode is chosen by trying all of them stuck
@@ -26,11 +29,13 @@
 // constraints are linear and homogeneous in the velocities, so scaling keeps them).
 #pragma once
 
+#include <functional>
 #include <memory>
 
+#include "virtual_go/body/rigid_body_state.h"
 #include "virtual_go/contact/plane_contact_dynamics.h"
 #include "virtual_go/contact/plane_region.h"
-#include "virtual_go/body/rigid_body_state.h"
+#include "virtual_go/geometry/lens_distance.h"
 
 namespace virtual_go {
 
@@ -46,6 +51,7 @@ enum class PlaneContactEvent {
   rim_to_cap,
   lift_off,
   left_region,
+  obstacle,
   rest,
 };
 
@@ -57,7 +63,7 @@ struct PlaneContactOutcome {
   PlaneContactEvent event = PlaneContactEvent::none;
   RigidBodyState state;   // at time_s, after the event (on the plane: gap 0)
   PlaneContactMode mode;  // the mode from time_s on
-  bool finished = false;  // the phase is over: lift_off, left_region or rest
+  bool finished = false;  // the phase is over: lift_off, left_region, obstacle or rest
 };
 
 struct PlaneContactOptions {
@@ -67,6 +73,11 @@ struct PlaneContactOptions {
   double initial_step_s = 1e-4;       // first trial step after a mode change, s
   double gap_tolerance_m = 1e-9;      // accepted |gap| of the initial state, m
   double normal_velocity_tolerance_m_s = 1e-6;  // accepted |u_n| of the initial state, m/s
+  // Optional: the signed distance (m) from the stone at a pose to the obstacles other than the
+  // plane (the board's sides for a stone on the table), positive while none touches it. The
+  // phase ends with `obstacle` where it reaches 0 (located like every event, on the dense
+  // output). It must be continuous in the pose; empty: there is nothing else to touch.
+  std::function<double(const LensPose&)> clearance_m;
 };
 
 // Work done, for benchmarks (a resting or finished phase adds nothing).
@@ -83,7 +94,8 @@ class PlaneContact {
   // `state` must touch the plane z = plane_height_m (|gap| <= options.gap_tolerance_m) with a
   // normal velocity of the contact point within options.normal_velocity_tolerance_m_s, and its
   // contact point inside `region`; the residual normal velocity is removed by a plastic impulse
-  // (energy can only fall). Throws InvalidArgument naming what is wrong.
+  // (energy can only fall), and the clearance (if given) must be positive. Throws
+  // InvalidArgument naming what is wrong.
   PlaneContact(const MotionModel& model, const LensGeometry& lens,
                const Eigen::Vector3d& gravity_world, double plane_height_m,
                const PlaneRegion& region, const ContactMaterial& material,
@@ -97,7 +109,8 @@ class PlaneContact {
   // (every mode change, and the end of the phase), whichever comes first. Mode changes that
   // leave the mode as it was (a rocking stone turning against its rolling resistance) are
   // handled inside. After `rest` the state is frozen and further calls cost nothing; after
-  // `lift_off` or `left_region` the phase is over and only that time may be asked for again.
+  // `lift_off`, `left_region` or `obstacle` the phase is over and only that time may be asked
+  // for again.
   // Throws InvalidArgument for a non-finite t_end_s or one before time_reached(), and
   // IntegrationError (state unchanged up to the last completed step) when no consistent contact
   // force exists (Painleve's paradox: for a size-33 lens only at mu >= 0.986, found over 2e5

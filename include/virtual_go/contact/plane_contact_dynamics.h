@@ -1,5 +1,6 @@
 // Forces and accelerations of a stone in sustained contact with a horizontal plane z = h0, for a
-// given contact mode: the Newton-Euler equations with the contact point held on the plane.
+// given contact mode: the Newton-Euler equations with the contact point held on the plane
+// (docs/physics.md, "Sustained contact").
 //
 //   m a_G = m g + F,   d/dt(I_w omega) = r x F + tau,   F = N e_z + F_t,   tau = tau_r + tau_s e_z
 //
@@ -17,9 +18,9 @@
 
 #include <Eigen/Geometry>
 
+#include "virtual_go/body/motion_model.h"
 #include "virtual_go/contact/material.h"
 #include "virtual_go/geometry/lens_geometry.h"
-#include "virtual_go/body/motion_model.h"
 
 namespace virtual_go {
 
@@ -32,14 +33,21 @@ struct ContactLawPart {
   // (horizontal for tangential and rolling, +/- e_z for spinning). The law opposes
   // sign(v . reference) v / |v|, which is v / |v| until v reaches zero and continues smoothly
   // through it, so the integrator's dense output stays accurate across the zero crossing where
-  // the event (the motion stops) is located. In a thin layer around zero motion (speeds below
+  // the event (the motion stops) is located. In a layer around zero motion (speeds below
   // kSlipDirectionLayer, kRollDirectionLayer) it opposes the reference itself: there v's
-  // direction is dominated by round-off (a part just released from stuck) and following it
-  // makes the equations stiff (the law turns the motion at a rate ~ mu N / (m |v|)). The layer
-  // is left or the motion stops within microseconds; the reference is the consistent direction
-  // (release) or the direction a moment before (stop), and friction along it still dissipates
-  // until v . reference reaches 0, which is the stop event.
+  // direction is a fast variable (the law turns the motion at a rate ~ mu N / (m |v|): stiff
+  // equations) or dominated by round-off (a part just released from stuck). There PlaneContact
+  // keeps the reference on the direction the motion is slaved to, the stable consistent one (the
+  // part's acceleration along it, see `slaved`), so a growing motion leaves the layer aligned
+  // with its law and a shrinking one stops along it; without such a direction the reference is
+  // the direction a moment before, and friction along it still dissipates until
+  // v . reference reaches 0, which is the stop event.
   Eigen::Vector3d reference_world = Eigen::Vector3d::Zero();
+  // Sliding inside the direction layer with a stable consistent direction near the reference:
+  // within the current integrator step the law opposes that direction at each state (found from
+  // the reference), not the fixed reference. Set by PlaneContact at each step's start; ignored
+  // by solve_plane_contact.
+  bool slaved = false;
 };
 
 struct PlaneContactMode {
@@ -109,8 +117,11 @@ PlaneContactForces solve_plane_contact(const PlaneContactSetup& setup, const Pla
 // reference direction. A contact point creeping at 1e-12 m/s moves a picometre a second.
 constexpr double kZeroSlipSpeed = 1e-12;     // m/s
 constexpr double kZeroAngularSpeed = 1e-10;  // rad/s (1e-12 m/s at the rim)
-// The layer around zero motion where sliding parts keep their reference direction.
-constexpr double kSlipDirectionLayer = 1e-6;  // m/s
+// The layer around zero motion where sliding parts follow their reference direction. 1e-4 m/s:
+// above it the direction's relaxation rate mu g / |v| (~3e4 /s) no longer limits the
+// integrator's steps much; below it the slaved direction is within ~1e-2 rad of the motion's
+// (measured after a release).
+constexpr double kSlipDirectionLayer = 1e-4;  // m/s
 constexpr double kRollDirectionLayer = 1e-4;  // rad/s (1e-6 m/s at the rim)
 
 // The sliding direction of a part (unit) from its velocity and reference, as the law uses it.

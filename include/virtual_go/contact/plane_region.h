@@ -1,6 +1,7 @@
 // The part of a horizontal plane that exists for a sustained contact: the whole plane, the inside
 // of a rectangle (the board's top face) or its outside (the table around the board's footprint).
-// A contact ends with `left_region` when its contact point crosses the boundary.
+// A contact ends with `left_region` when its contact point crosses the boundary (docs/physics.md,
+// "Sustained contact").
 #pragma once
 
 #include <Eigen/Core>

@@ -1,8 +1,9 @@
-// The Go stone's lens as contact geometry: support points and its reach towards a plane, in the
-// body frame (origin at the centre of mass G, z along the symmetry axis). The lens is the
-// intersection of two spheres of radius R whose centres sit at +d e_z (the bottom cap, z <= 0)
-// and -d e_z (the top cap, z >= 0); the caps meet at the rim, a circle of radius a at z = 0.
-// Each cap's outward normals fill a cone of half-angle beta about -/+ e_z, cos beta = d / R.
+// The Go stone's lens as contact geometry (docs/physics.md, "Contact geometry"): support points
+// and its reach towards a plane, in the body frame (origin at the centre of mass G, z along the
+// symmetry axis). The lens is the intersection of two spheres of radius R whose centres sit at +d
+// e_z (the bottom cap, z <= 0) and -d e_z (the top cap, z >= 0); the caps meet at the rim, a circle
+// of radius a at z = 0. Each cap's outward normals fill a cone of half-angle beta about -/+ e_z,
+// cos beta = d / R.
 #pragma once
 
 #include <Eigen/Core>

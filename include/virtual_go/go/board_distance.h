@@ -1,8 +1,9 @@
 // Signed distance of a stone's lens to the Go board (a box, top face at z = 0) and the table
-// (the plane z = -thickness the board stands on), with the feature touched, the witness point on
-// the lens and the normal. The board's features that a stone can reach from above or beside
-// it: the top face, the 4 side faces, the 4 top edges, the 4 vertical edges and the 4 top
-// corners; the table is a plane everywhere (under the board it is never the nearest).
+// (the plane z = -thickness the board stands on; docs/physics.md, "Contact geometry"), with the
+// feature touched, the witness point on the lens and the normal. The board's features that a stone
+// can reach from above or beside it: the top face, the 4 side faces, the 4 top edges, the 4
+// vertical edges and the 4 top corners; the table is a plane everywhere (under the board it is
+// never the nearest).
 //
 // The box distance is a separating-axis maximum over the axes of the features the lens can be
 // near: the 5 face normals always, and each edge or corner whose Voronoi region the lens's

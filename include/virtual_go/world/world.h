@@ -1,0 +1,143 @@
+// Stones on a Go board standing on a table (docs/physics.md, "World"). advance_to(t) takes every
+// stone to the time t through all its events in time order: exact flight in closed form, exact
+// times of impact, impacts that cannot add energy, sustained contact on the top face or the table
+// in coordinates where the stone can neither sink nor float, a fixed-step nonsmooth fallback for
+// edges, corners and sides, and exact rest. After the call state(i) is the state at t; each event
+// carries the exact state at its own instant. A caller sampling a fixed grid (the node, a
+// benchmark) calls advance_to at every grid time and reads the states.
+//
+// Cost: a flying stone costs one exact-integrator step per call (two quaternion products on a
+// fixed grid) and a comparison with its cached contact time, searched once per flight; a stone in
+// contact costs its contact model's steps; a resting stone costs nothing: it is skipped, its pose
+// frozen bit for bit, until a command wakes it. Stones do not interact yet (stone-stone contact
+// is later work): each one's events are found on its own, then merged in time order.
+//
+// Per-stone data is kept in two arrays (as in Box2D v3's solver sets): the hot part every call
+// reads (state, mode, the times up to which a flight needs only sampling) and the bookkeeping
+// touched at events (the flight's anchor and cache, the contact phase).
+#pragma once
+
+#include <cstddef>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "virtual_go/contact/plane_contact.h"
+#include "virtual_go/flight/integrator.h"
+#include "virtual_go/go/board_distance.h"
+#include "virtual_go/world/flight_track.h"
+#include "virtual_go/world/nonsmooth_contact.h"
+#include "virtual_go/world/stone_mode.h"
+#include "virtual_go/world/world_config.h"
+#include "virtual_go/world/world_counters.h"
+#include "virtual_go/world/world_event.h"
+
+namespace virtual_go {
+
+class World {
+ public:
+  // One stone, or several, at t0_s (world time line, s). Throws InvalidArgument naming the field
+  // for a bad configuration, a bad state ("state", "stone 2: ...") or a stone overlapping the
+  // board or the table by more than the touch tolerance. Events at t0 (a stone placed resting on
+  // the board comes to rest at once) are reported by the first advance_to.
+  World(const WorldConfig& config, const RigidBodyState& initial_state, double t0_s);
+  World(const WorldConfig& config, const std::vector<RigidBodyState>& initial_states, double t0_s);
+  ~World();
+  World(World&&) noexcept;
+  World& operator=(World&&) noexcept;
+
+  // Starts over with these stones at t0_s; counters are zeroed. Same checks as the constructor;
+  // on error nothing changes.
+  void reset(const std::vector<RigidBodyState>& states, double t0_s);
+
+  // Advances every stone to t_s (>= time()) through all events, appending them in time order
+  // (ties: by stone, then in the order they happened). Throws InvalidArgument for a non-finite t_s
+  // or one before time(), nothing changed. A plane contact that fails (no consistent contact
+  // force, an integrator failure) hands the stone to the fallback; IntegrationError escapes
+  // only if an impact's slip integration fails.
+  void advance_to(double t_s, std::vector<WorldEvent>& events);
+
+  // A command: the stone's state becomes `state` at t_s (>= time(); the world is first advanced
+  // to t_s, its events appended). A resting stone is woken (a `wake` event first); events the
+  // new state has at t_s itself (an impact, a contact start, rest) follow. Throws
+  // InvalidArgument for an unknown stone, a bad state or one overlapping the board, before
+  // anything changes.
+  void set_state(std::size_t stone, const RigidBodyState& state, double t_s,
+                 std::vector<WorldEvent>& events);
+
+  double time() const { return time_; }
+  std::size_t stone_count() const { return hot_.size(); }
+  const RigidBodyState& state(std::size_t stone) const;  // at time()
+  StoneMode mode(std::size_t stone) const;
+  bool is_resting(std::size_t stone) const { return mode(stone) == StoneMode::resting; }
+  bool all_resting() const;
+  ContactPhase contact_phase(std::size_t stone) const;
+  // In flight: the time of the flight's first contact once found, +infinity while none is known.
+  double next_contact_time(std::size_t stone) const;
+  // Total energy (J): 1/2 m v^2 + 1/2 omega . L - m g . x_G.
+  double energy(std::size_t stone) const;
+
+  const WorldConfig& config() const { return config_; }
+  const MotionSetup& setup() const { return config_.motion; }
+  const LensGeometry& lens() const { return lens_; }
+  const BoardDistance& board_distance() const { return board_; }
+  const WorldCounters& counters() const { return counters_; }
+
+ private:
+  // Read on every call.
+  struct StoneHot {
+    RigidBodyState state;
+    double state_time_s = 0.0;
+    StoneMode mode = StoneMode::flight;
+    // Flight: sampling alone suffices for t < next_contact_s and t <= clear_until_s.
+    double next_contact_s = std::numeric_limits<double>::infinity();
+    double clear_until_s = std::numeric_limits<double>::infinity();
+  };
+  // Touched at events.
+  struct StoneRecord {
+    FlightTrack flight;
+    ContactPhase phase = ContactPhase::none;
+    std::optional<PlaneContact> plane;
+    std::optional<NonsmoothContact> nonsmooth;
+    PlaneContactCounters plane_seen;  // the phase's counters already added to the world's
+    NonsmoothCounters nonsmooth_seen;
+    double transition_time_s = -std::numeric_limits<double>::infinity();
+    int transitions_at_instant = 0;
+  };
+
+  void check_state(const std::string& field, const RigidBodyState& state) const;
+  void start_stones(const std::vector<RigidBodyState>& states, double t0_s);
+  void advance_stone(std::size_t i, double t_s);
+  bool advance_flight(std::size_t i, double t_s);
+  bool advance_plane(std::size_t i, double t_s);
+  bool advance_nonsmooth(std::size_t i, double t_s);
+  TimeOfImpact search(std::size_t i, double from_s, double to_s);
+  void begin_flight(std::size_t i, const RigidBodyState& state, double t_s, bool after_lift_off);
+  void handle_contact(std::size_t i);
+  void enter_sustained(std::size_t i, const RigidBodyState& state, double t_s,
+                       const BoardContact& contact);
+  void start_nonsmooth(std::size_t i, const RigidBodyState& state, double t_s,
+                       WorldEventDetail detail, const BoardContact* contact);
+  void come_to_rest(std::size_t i, const RigidBodyState& state, double t_s,
+                    WorldEventDetail detail);
+  bool transition_allowed(std::size_t i, double t_s);
+  void sync_plane_counters(std::size_t i);
+  void sync_nonsmooth_counters(std::size_t i);
+  WorldEvent& emit(std::size_t i, double t_s, WorldEventKind kind, WorldEventDetail detail,
+                   const RigidBodyState& state);
+  const ContactMaterial& material_of(const BoardFeature& feature) const;
+  void flush(std::vector<WorldEvent>& events);
+
+  WorldConfig config_;
+  LensGeometry lens_;
+  BoardDistance board_;
+  std::unique_ptr<Integrator> exact_;
+  double time_ = 0.0;
+  std::vector<StoneHot> hot_;
+  std::vector<StoneRecord> records_;
+  std::vector<WorldEvent> pending_;
+  WorldCounters counters_;
+};
+
+}  // namespace virtual_go

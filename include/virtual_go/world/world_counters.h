@@ -1,0 +1,20 @@
+// The work a World did, for tests and benchmarks: what a scene costs, and proof that a resting
+// stone costs nothing (no flight step, no search, no contact step while it rests).
+#pragma once
+
+namespace virtual_go {
+
+struct WorldCounters {
+  long advance_calls = 0;         // World::advance_to calls
+  long flight_steps = 0;          // exact-integrator steps (flight samples)
+  long contact_searches = 0;      // time-of-impact searches
+  long contact_search_steps = 0;  // their advancement and polishing steps
+  long impacts = 0;               // impacts resolved (Stronge)
+  long plane_contact_steps = 0;   // accepted integrator steps of plane contacts
+  long plane_contact_rhs = 0;     // their right-hand-side evaluations
+  long nonsmooth_steps = 0;       // committed sub-steps of the fallback
+  long nonsmooth_impulses = 0;    // plastic impulses of the fallback
+  long events = 0;                // events reported
+};
+
+}  // namespace virtual_go

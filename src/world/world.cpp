@@ -1,0 +1,503 @@
+#include "virtual_go/world/world.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <utility>
+
+#include "virtual_go/common/validation.h"
+#include "virtual_go/contact/impact.h"
+#include "virtual_go/contact/time_of_impact.h"
+#include "virtual_go/flight/exact_motion.h"
+#include "virtual_go/flight/integrator_registry.h"
+#include "virtual_go/world/support_plane.h"
+
+namespace virtual_go {
+namespace {
+
+// Transitions of one stone at one instant beyond this mean the exact models keep handing the
+// contact to each other without progress (a round-off-level standoff): the fallback, which
+// always advances time, takes it.
+constexpr int kMaxTransitionsAtInstant = 16;
+// After a lift-off the stone is in flight when its gap is resolvable (m) and opening.
+constexpr double kResolvableGapM = 1e-12;
+// A contact found at the very start of a flight after a lift-off, slower than this (m/s), is the
+// plane being left, not an impact (the plane model accepts |u_n| up to 1e-6 m/s).
+constexpr double kLeavingSpeedMps = 1e-6;
+constexpr double kFirstProbeS = 1e-9;
+
+}  // namespace
+
+World::World(const WorldConfig& config, const RigidBodyState& initial_state, double t0_s)
+    : World(config, std::vector<RigidBodyState>{initial_state}, t0_s) {}
+
+World::World(const WorldConfig& config, const std::vector<RigidBodyState>& initial_states,
+             double t0_s)
+    : config_((validate_world_config(config), config)),
+      lens_(config.shape),
+      board_(lens_, config.board),
+      exact_(make_integrator("exact", config.motion)) {
+  reset(initial_states, t0_s);
+}
+
+World::~World() = default;
+World::World(World&&) noexcept = default;
+World& World::operator=(World&&) noexcept = default;
+
+void World::check_state(const std::string& field, const RigidBodyState& state) const {
+  try {
+    (void)state.validated();
+  } catch (const InvalidArgument& e) {
+    throw InvalidArgument(field, field + ": " + e.what());
+  }
+  if (!config_.board_enabled) return;
+  const RigidBodyState s = state.validated();
+  const BoardContact c = board_.nearest(s);
+  const double tolerance = config_.options.time_of_impact.touch_tolerance_m;
+  if (c.lens.gap_m < -tolerance) {
+    throw InvalidArgument(field, field + ": the stone overlaps the " +
+                                     (c.on_table() ? std::string("table") : "board") + " (" +
+                                     board_feature_name(c.feature) + ") by " +
+                                     format_value(-c.lens.gap_m) + " m, at most " +
+                                     format_value(tolerance) + " m is allowed");
+  }
+}
+
+void World::reset(const std::vector<RigidBodyState>& states, double t0_s) {
+  require_finite("time", t0_s);
+  for (std::size_t i = 0; i < states.size(); ++i) {
+    check_state(states.size() == 1 ? "state" : "state of stone " + std::to_string(i), states[i]);
+  }
+  start_stones(states, t0_s);
+}
+
+void World::start_stones(const std::vector<RigidBodyState>& states, double t0_s) {
+  time_ = t0_s;
+  counters_ = WorldCounters{};
+  pending_.clear();
+  hot_.assign(states.size(), StoneHot{});
+  records_.clear();
+  records_.resize(states.size());
+  for (std::size_t i = 0; i < states.size(); ++i) {
+    begin_flight(i, states[i].validated(), t0_s, false);
+  }
+}
+
+const RigidBodyState& World::state(std::size_t stone) const { return hot_.at(stone).state; }
+StoneMode World::mode(std::size_t stone) const { return hot_.at(stone).mode; }
+ContactPhase World::contact_phase(std::size_t stone) const { return records_.at(stone).phase; }
+
+bool World::all_resting() const {
+  return std::all_of(hot_.begin(), hot_.end(),
+                     [](const StoneHot& h) { return h.mode == StoneMode::resting; });
+}
+
+double World::next_contact_time(std::size_t stone) const {
+  const StoneHot& h = hot_.at(stone);
+  return h.mode == StoneMode::flight ? h.next_contact_s : std::numeric_limits<double>::infinity();
+}
+
+double World::energy(std::size_t stone) const {
+  const RigidBodyState& s = state(stone);
+  const MotionModel& model = config_.motion.model;
+  const double m = model.mass_properties().mass();
+  const Eigen::Vector3d omega =
+      model.angular_velocity_world(s.orientation, s.angular_momentum_world);
+  return 0.5 * m * s.velocity_world.squaredNorm() + 0.5 * omega.dot(s.angular_momentum_world) -
+         m * config_.motion.gravity_world.dot(s.position_world);
+}
+
+const ContactMaterial& World::material_of(const BoardFeature& feature) const {
+  return feature.kind == BoardFeatureKind::table ? config_.table_material : config_.board_material;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Advancing
+
+void World::advance_to(double t_s, std::vector<WorldEvent>& events) {
+  require_finite("time", t_s);
+  if (t_s < time_) {
+    throw InvalidArgument("time", "advance time " + format_value(t_s) +
+                                      " s is before the world's time " + format_value(time_) +
+                                      " s");
+  }
+  ++counters_.advance_calls;
+  for (std::size_t i = 0; i < hot_.size(); ++i) {
+    StoneHot& h = hot_[i];
+    if (h.mode == StoneMode::resting) continue;  // frozen: no work at all
+    if (h.mode == StoneMode::flight && t_s < h.next_contact_s && t_s <= h.clear_until_s) {
+      // The common case: a flight sample, nothing to search.
+      if (records_[i].flight.sample(*exact_, h.state, h.state_time_s, t_s)) {
+        h.state_time_s = t_s;
+        ++counters_.flight_steps;
+      }
+      continue;
+    }
+    advance_stone(i, t_s);
+  }
+  time_ = t_s;
+  flush(events);
+}
+
+void World::flush(std::vector<WorldEvent>& events) {
+  // Each stone's events are in time order; merge the stones' by time (stable: ties keep the
+  // stone order and, within a stone, the order they happened in).
+  std::stable_sort(pending_.begin(), pending_.end(),
+                   [](const WorldEvent& a, const WorldEvent& b) { return a.time_s < b.time_s; });
+  events.insert(events.end(), pending_.begin(), pending_.end());
+  pending_.clear();
+}
+
+void World::advance_stone(std::size_t i, double t_s) {
+  for (;;) {
+    StoneHot& h = hot_[i];
+    bool reached = false;
+    switch (h.mode) {
+      case StoneMode::resting:
+        return;
+      case StoneMode::flight:
+        reached = advance_flight(i, t_s);
+        break;
+      case StoneMode::contact:
+        reached = records_[i].phase == ContactPhase::plane ? advance_plane(i, t_s)
+                                                           : advance_nonsmooth(i, t_s);
+        break;
+    }
+    if (reached) return;
+  }
+}
+
+TimeOfImpact World::search(std::size_t i, double from_s, double to_s) {
+  StoneRecord& r = records_[i];
+  const TimeOfImpact found =
+      board_time_of_impact(board_, config_.motion, r.flight.anchor(), r.flight.anchor_time_s(),
+                           from_s, to_s, config_.options.time_of_impact);
+  ++counters_.contact_searches;
+  counters_.contact_search_steps += found.advancement_steps + found.polish_steps;
+  r.flight.record_search(found);
+  hot_[i].next_contact_s = r.flight.contact_time_s();
+  hot_[i].clear_until_s = r.flight.clear_until_s();
+  return found;
+}
+
+bool World::advance_flight(std::size_t i, double t_s) {
+  StoneHot& h = hot_[i];
+  StoneRecord& r = records_[i];
+  // Extend the search only when the flight outlives what is known.
+  while (!r.flight.contact() && r.flight.clear_until_s() < t_s) {
+    const double from = r.flight.clear_until_s();
+    const TimeOfImpact found =
+        search(i, from, std::max(t_s, from + config_.options.contact_search_horizon_s));
+    if (!found.hit && !(found.time_s > from)) {
+      // An exhausted search that could not move (a pathological grazing approach): the
+      // fallback takes the stone from there.
+      start_nonsmooth(i, found.state, from, WorldEventDetail::edge_contact, nullptr);
+      return false;
+    }
+  }
+  if (r.flight.contact() && r.flight.contact()->time_s <= t_s) {
+    handle_contact(i);
+    return false;
+  }
+  if (r.flight.sample(*exact_, h.state, h.state_time_s, t_s)) {
+    h.state_time_s = t_s;
+    ++counters_.flight_steps;
+  }
+  return true;
+}
+
+bool World::advance_plane(std::size_t i, double t_s) {
+  StoneHot& h = hot_[i];
+  StoneRecord& r = records_[i];
+  PlaneContactOutcome o;
+  try {
+    o = r.plane->advance(t_s);
+  } catch (const IntegrationError&) {
+    // No consistent contact force (Painleve) or an integrator failure: the fallback takes the
+    // contact from the last state handed out, which is exact up to there.
+    sync_plane_counters(i);
+    start_nonsmooth(i, h.state, h.state_time_s, WorldEventDetail::edge_contact, nullptr);
+    return false;
+  }
+  sync_plane_counters(i);
+  h.state = o.state;
+  h.state_time_s = o.time_s;
+  switch (o.event) {
+    case PlaneContactEvent::none:
+      return true;
+    case PlaneContactEvent::rest:
+      come_to_rest(i, o.state, o.time_s, WorldEventDetail::rest);
+      return false;
+    case PlaneContactEvent::lift_off:
+      emit(i, o.time_s, WorldEventKind::lift_off, WorldEventDetail::lift_off, o.state);
+      begin_flight(i, o.state, o.time_s, true);
+      return false;
+    case PlaneContactEvent::left_region:
+      start_nonsmooth(i, o.state, o.time_s, WorldEventDetail::left_region, nullptr);
+      return false;
+    case PlaneContactEvent::obstacle:
+      start_nonsmooth(i, o.state, o.time_s, WorldEventDetail::obstacle, nullptr);
+      return false;
+    default:
+      emit(i, o.time_s, plane_regime_kind(o.mode), plane_event_detail(o.event), o.state);
+      return false;
+  }
+}
+
+bool World::advance_nonsmooth(std::size_t i, double t_s) {
+  StoneHot& h = hot_[i];
+  StoneRecord& r = records_[i];
+  const NonsmoothOutcome o = r.nonsmooth->advance(t_s);
+  sync_nonsmooth_counters(i);
+  h.state = o.state;
+  h.state_time_s = o.time_s;
+  switch (o.end) {
+    case NonsmoothEnd::none:
+      return true;
+    case NonsmoothEnd::separated:
+      emit(i, o.time_s, WorldEventKind::lift_off, WorldEventDetail::separation, o.state);
+      begin_flight(i, o.state, o.time_s, false);
+      return false;
+    case NonsmoothEnd::plane:
+      enter_sustained(i, o.state, o.time_s, o.contact);
+      return false;
+    case NonsmoothEnd::rest:
+      come_to_rest(i, o.state, o.time_s, WorldEventDetail::settle);
+      return false;
+  }
+  return false;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Transitions
+
+bool World::transition_allowed(std::size_t i, double t_s) {
+  StoneRecord& r = records_[i];
+  if (t_s != r.transition_time_s) {
+    r.transition_time_s = t_s;
+    r.transitions_at_instant = 0;
+  }
+  return ++r.transitions_at_instant <= kMaxTransitionsAtInstant;
+}
+
+void World::begin_flight(std::size_t i, const RigidBodyState& state, double t_s,
+                         bool after_lift_off) {
+  StoneHot& h = hot_[i];
+  StoneRecord& r = records_[i];
+  if (!transition_allowed(i, t_s)) {
+    start_nonsmooth(i, state, t_s, WorldEventDetail::edge_contact, nullptr);
+    return;
+  }
+  h.mode = StoneMode::flight;
+  h.state = state;
+  h.state_time_s = t_s;
+  r.phase = ContactPhase::none;
+  r.plane.reset();
+  r.nonsmooth.reset();
+  r.flight.begin(state, t_s);
+  if (!config_.board_enabled) {
+    r.flight.set_free_forever();
+    h.next_contact_s = r.flight.contact_time_s();
+    h.clear_until_s = r.flight.clear_until_s();
+    return;
+  }
+  double from = t_s;
+  if (after_lift_off) {
+    // The stone leaves its plane with gap, normal velocity and normal force all zero; the gap
+    // opens at third order. Find when it is resolvably open (docs/physics.md, "World").
+    const ExactMotion flight(config_.motion, state);
+    bool open = false;
+    for (double delta = kFirstProbeS; delta <= config_.options.lift_off_probe_s; delta *= 2.0) {
+      const RigidBodyState s = flight.state_at(delta);
+      const BoardContact c = board_.nearest(s);
+      if (c.lens.gap_m < -config_.options.time_of_impact.touch_tolerance_m) break;  // closing
+      const double rate = c.lens.normal_world.dot(
+          point_velocity_world(config_.motion.model, s, c.lens.point_world));
+      if (c.lens.gap_m > kResolvableGapM && rate > 0.0) {
+        from = t_s + delta;
+        open = true;
+        break;
+      }
+    }
+    if (!open) {
+      // The lift-off was round-off: the contact continues, in the fallback.
+      start_nonsmooth(i, state, t_s, WorldEventDetail::edge_contact, nullptr);
+      return;
+    }
+  }
+  search(i, from, from + config_.options.contact_search_horizon_s);
+  if (after_lift_off && r.flight.contact() && r.flight.contact()->time_s == from &&
+      r.flight.contact()->approach_speed_mps <= kLeavingSpeedMps) {
+    start_nonsmooth(i, state, t_s, WorldEventDetail::edge_contact, nullptr);
+  }
+}
+
+void World::handle_contact(std::size_t i) {
+  const TimeOfImpact c = *records_[i].flight.contact();
+  if (!(c.approach_speed_mps > 0.0)) {
+    // Not in flight at all: resting on (or sliding along) the surface already.
+    enter_sustained(i, c.state, c.time_s, c.contact);
+    return;
+  }
+  ImpactOptions options;
+  options.zeno_height_m = config_.zeno_height_m;
+  const Impact impact = resolve_impact(config_.motion.model, c.state, c.contact.lens.point_world,
+                                       c.contact.lens.normal_world, material_of(c.contact.feature),
+                                       config_.motion.gravity_world, options);
+  ++counters_.impacts;
+  WorldEvent& e = emit(i, c.time_s, WorldEventKind::impact, WorldEventDetail::impact, impact.state);
+  e.has_feature = true;
+  e.feature = c.contact.feature;
+  e.part = c.contact.lens.part;
+  e.energy_change_j = impact.energy_change_j;
+  e.approach_speed_mps = -impact.normal_velocity_before_mps;
+  e.rebound_speed_mps = impact.normal_velocity_after_mps;
+  if (impact.sustained || impact.separating) {
+    enter_sustained(i, impact.state, c.time_s, c.contact);
+  } else {
+    begin_flight(i, impact.state, c.time_s, false);
+  }
+}
+
+void World::enter_sustained(std::size_t i, const RigidBodyState& state, double t_s,
+                            const BoardContact& contact) {
+  StoneHot& h = hot_[i];
+  StoneRecord& r = records_[i];
+  if (!transition_allowed(i, t_s)) {
+    start_nonsmooth(i, state, t_s, WorldEventDetail::edge_contact, &contact);
+    return;
+  }
+  const std::optional<SupportPlane> plane = support_plane(board_, contact, lens_pose(state), 0.0);
+  if (!plane) {
+    start_nonsmooth(i, state, t_s, WorldEventDetail::edge_contact, &contact);
+    return;
+  }
+  // Exactly onto the plane: the impact or the fallback leaves a gap of round-off size.
+  const RigidBodyState on_plane = placed_on_plane(lens_, state, plane->height_m);
+  PlaneContactOptions options = config_.options.plane_contact;
+  options.clearance_m = support_plane_clearance(board_, *plane);
+  try {
+    r.plane.emplace(config_.motion.model, lens_, config_.motion.gravity_world, plane->height_m,
+                    plane->region, material_of(plane->feature), on_plane, t_s, options);
+  } catch (const InvalidArgument&) {
+    // The plane model refuses the state (a normal velocity left above its tolerance): the
+    // fallback can take any contact.
+    r.plane.reset();
+    start_nonsmooth(i, state, t_s, WorldEventDetail::edge_contact, &contact);
+    return;
+  }
+  r.nonsmooth.reset();
+  r.phase = ContactPhase::plane;
+  r.plane_seen = PlaneContactCounters{};
+  h.mode = StoneMode::contact;
+  h.state_time_s = t_s;
+  if (r.plane->finished()) {
+    // At rest at once (or leaving at once): the outcome comes with the first advance.
+    h.state = on_plane;
+    return;
+  }
+  h.state = r.plane->state_at(t_s);
+  WorldEvent& e =
+      emit(i, t_s, plane_regime_kind(r.plane->mode()), WorldEventDetail::contact_start, h.state);
+  e.has_feature = true;
+  e.feature = plane->feature;
+  e.part = r.plane->mode().part;
+}
+
+void World::start_nonsmooth(std::size_t i, const RigidBodyState& state, double t_s,
+                            WorldEventDetail detail, const BoardContact* contact) {
+  StoneHot& h = hot_[i];
+  StoneRecord& r = records_[i];
+  r.plane.reset();
+  r.nonsmooth.emplace(board_, config_.motion, config_.board_material, config_.table_material, state,
+                      t_s, config_.options.nonsmooth);
+  r.nonsmooth_seen = NonsmoothCounters{};
+  r.phase = ContactPhase::nonsmooth;
+  h.mode = StoneMode::contact;
+  h.state = r.nonsmooth->lattice_state();
+  h.state_time_s = t_s;
+  WorldEvent& e = emit(i, t_s, WorldEventKind::slide, detail, h.state);
+  const BoardContact c = contact ? *contact : board_.nearest(h.state);
+  e.has_feature = true;
+  e.feature = c.feature;
+  e.part = c.lens.part;
+}
+
+void World::come_to_rest(std::size_t i, const RigidBodyState& state, double t_s,
+                         WorldEventDetail detail) {
+  StoneHot& h = hot_[i];
+  StoneRecord& r = records_[i];
+  h.mode = StoneMode::resting;
+  h.state = state;
+  h.state_time_s = t_s;
+  r.phase = ContactPhase::none;
+  r.plane.reset();
+  r.nonsmooth.reset();
+  WorldEvent& e = emit(i, t_s, WorldEventKind::rest, detail, state);
+  if (config_.board_enabled) {
+    const BoardContact c = board_.nearest(state);
+    e.has_feature = true;
+    e.feature = c.feature;
+    e.part = c.lens.part;
+  }
+}
+
+void World::set_state(std::size_t stone, const RigidBodyState& state, double t_s,
+                      std::vector<WorldEvent>& events) {
+  if (stone >= hot_.size()) {
+    throw InvalidArgument("stone", "stone " + std::to_string(stone) + " does not exist (" +
+                                       std::to_string(hot_.size()) + " stones)");
+  }
+  require_finite("time", t_s);
+  if (t_s < time_) {
+    throw InvalidArgument("time", "state time " + format_value(t_s) +
+                                      " s is before the world's time " + format_value(time_) +
+                                      " s");
+  }
+  check_state("state", state);
+  if (t_s > time_) advance_to(t_s, events);
+  const RigidBodyState s = state.validated();
+  if (hot_[stone].mode == StoneMode::resting) {
+    emit(stone, t_s, WorldEventKind::wake, WorldEventDetail::wake, s);
+  }
+  // A command is a new start: the same-instant guard counts from here.
+  records_[stone].transition_time_s = -std::numeric_limits<double>::infinity();
+  begin_flight(stone, s, t_s, false);
+  advance_stone(stone, t_s);
+  flush(events);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Bookkeeping
+
+void World::sync_plane_counters(std::size_t i) {
+  StoneRecord& r = records_[i];
+  const PlaneContactCounters& c = r.plane->counters();
+  counters_.plane_contact_steps += c.steps - r.plane_seen.steps;
+  counters_.plane_contact_rhs += c.rhs_evaluations - r.plane_seen.rhs_evaluations;
+  r.plane_seen = c;
+}
+
+void World::sync_nonsmooth_counters(std::size_t i) {
+  StoneRecord& r = records_[i];
+  const NonsmoothCounters& c = r.nonsmooth->counters();
+  counters_.nonsmooth_steps += c.steps - r.nonsmooth_seen.steps;
+  counters_.nonsmooth_impulses += c.impulses - r.nonsmooth_seen.impulses;
+  counters_.contact_searches += c.separation_searches - r.nonsmooth_seen.separation_searches;
+  r.nonsmooth_seen = c;
+}
+
+WorldEvent& World::emit(std::size_t i, double t_s, WorldEventKind kind, WorldEventDetail detail,
+                        const RigidBodyState& state) {
+  WorldEvent e;
+  e.time_s = t_s;
+  e.stone = i;
+  e.kind = kind;
+  e.detail = detail;
+  e.state = state;
+  ++counters_.events;
+  pending_.push_back(e);
+  return pending_.back();
+}
+
+}  // namespace virtual_go
