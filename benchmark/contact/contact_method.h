@@ -118,6 +118,12 @@ struct ContactCounters {
   long events = -1;           // ours: events handled (impacts, mode changes, rest, wake)
   long impacts = -1;          // ours: impacts among them
   long rhs_evaluations = -1;  // ours: right-hand-side evaluations of sustained contact
+  long contact_steps = -1;    // ours: accepted integrator steps of sustained contact
+  long fallback_steps = -1;   // ours: sub-steps of the nonsmooth fallback
+  // ours: integration and search work done since the stone last fell asleep (flight steps,
+  // searches, impacts, contact steps and evaluations, fallback sub-steps); -1 while awake.
+  long work_while_asleep = -1;
+  double rest_event_time_s = NAN;  // ours: the time of the first rest event (exact, off the grid)
 };
 
 // One setting as run, for the settings tables (defaults vs tuned) of docs/benchmarks/.
