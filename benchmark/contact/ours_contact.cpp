@@ -42,15 +42,15 @@ class OursContact : public ContactMethod {
   std::string version() const override { return "virtual_go core (this tree)"; }
 
   void reset(const ContactScenario& s, double dt) override {
-    // The plane contact integrates the full Newton-Euler equations; the core has no option that
-    // holds the rotation (the frozen slide's closed form is checked in the core's own tests).
-    if (s.rotation_frozen)
-      throw ContactNotRun(
-          "not run: the core has no frozen-rotation option (the closed form is checked in "
-          "test/contact)");
-    const virtual_go::MotionModel model(
-        virtual_go::MotionModelKind::rigid_body,
-        virtual_go::MassProperties(s.stone.mass_kg, s.stone.principal_moments_body));
+    // The world has no option that holds the rotation; as the core's own frozen-slide test
+    // (test/contact/test_plane_contact.cpp) does, the stone gets moments of inertia of
+    // 10^6 kg m^2: friction's couple (mu m g c ~ 7e-5 N m) then turns it by ~1e-11 rad in the
+    // slide, far below every figure measured. Isotropic, so the flight stays in closed form.
+    const Eigen::Vector3d moments = s.rotation_frozen ? Eigen::Vector3d::Constant(kFrozenMoment)
+                                                      : s.stone.principal_moments_body;
+    frozen_ = s.rotation_frozen;
+    const virtual_go::MotionModel model(virtual_go::MotionModelKind::rigid_body,
+                                        virtual_go::MassProperties(s.stone.mass_kg, moments));
     virtual_go::WorldConfig config(
         virtual_go::MotionSetup{model, s.gravity_world},
         virtual_go::LensShape(2.0 * s.stone.half_width_m, 2.0 * s.stone.half_height_m));
@@ -124,6 +124,11 @@ class OursContact : public ContactMethod {
          "exact flight, exact time of impact, Stronge impact, sustained plane contact in "
          "constraint coordinates, exact rest; nonsmooth fallback on edges and sides",
          phys + "\"World\""},
+        {"stone inertia",
+         frozen_ ? "rotation frozen: moments " + num(kFrozenMoment) +
+                       " kg m^2 (as the core's frozen-slide test)"
+                 : "the stone's (I1, I1, I3)",
+         "benchmark/contact/ours_contact.cpp"},
         {"board material", material_text(c.board_material), phys + "\"Contact materials\""},
         {"table material", material_text(c.table_material), phys + "\"Contact materials\""},
         {"Zeno height (m)", num(c.zeno_height_m), phys + "\"Impact\""},
@@ -149,6 +154,8 @@ class OursContact : public ContactMethod {
   double dt_ = 0.0;
   long k_ = 0;
   long event_count_ = 0, impact_count_ = 0;
+  static constexpr double kFrozenMoment = 1e6;  // kg m^2, for rotation_frozen
+  bool frozen_ = false;
   long work_at_sleep_ = -1;   // the world's work when the stone fell asleep; -1: awake
   double rest_time_s_ = NAN;  // the first rest event's time
 };
