@@ -133,6 +133,7 @@ EOF
   cat "$doc/doc_findings.md"
   printf '\n## Goals (issue 11)\n\n'
   cat "$raw/contact_goals.md"
+  cat "$doc/doc_goals.md"
   printf '\n## Plots\n\n'
   for p in "${plots[@]}"; do printf '![%s](%s)\n\n' "$p" "$p"; done
   printf '## Results\n\n'

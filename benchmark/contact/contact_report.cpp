@@ -602,7 +602,7 @@ void write_goals_and_headline(const std::string& dir, const ReportInput& in) {
                 ", impact time error <= " + sci(impact) + " s, rest event at " +
                 f("%.6f", ours->counters.rest_event_time_s * 1e3) +
                 " ms), no energy gain in any scenario, a resting stone frozen with no integration "
-                "work; goals met and missed in [contact.md](docs/benchmarks/contact.md#goals)";
+                "work; goals met and missed in [contact.md](docs/benchmarks/contact.md#goals-issue-11)";
   }
   h << "- Contact (size-33 slate stone on the real board; closed forms for the flat drop and "
        "the slide): ours — "
