@@ -1,27 +1,34 @@
 #!/usr/bin/env bash
-# Work-precision benchmark of virtual_go's integrators against Bullet, ODE and MuJoCo, plus the
-# stone_node overhead: installs what it needs (sudo when not root), builds benchmark/ in
-# Release, runs everything and regenerates docs/benchmarks/. Not part of the test command.
+# Benchmarks of virtual_go against Bullet, ODE and MuJoCo: the flight work-precision sweep, the
+# contact benchmark (a stone dropped, tossed, slid and laid on the board) and the stone_node
+# overhead. Installs what it needs (sudo when not root), builds benchmark/ in Release, runs
+# everything and regenerates docs/benchmarks/. Not part of the test command.
 set -euo pipefail
 
 usage() {
   cat <<'EOF'
-usage: scripts/benchmark.sh [--quick] [--no-install] [--skip-node] [--out DIR]
+usage: scripts/benchmark.sh [--quick] [--no-install] [--skip-node] [--flight-only | --contact-only]
+                            [--report-only] [--out DIR]
 
 Installs libbullet-dev libode-dev libmujoco-dev libbenchmark-dev gnuplot (with sudo when not
-root), builds benchmark/ in Release into build_benchmark/ (or $VG_BENCH_BUILD), runs the
-work-precision benchmark (several minutes), builds the package into build_catkin/ (or $VG_BUILD) if
-stone_node is not there yet and measures the node overhead (scripts/node_overhead.sh, about a
-minute), then writes into DIR (default
-docs/benchmarks/): README.md (tables, machine, date), results.csv, work_precision_*.png,
-headline.md and node_overhead.md.
+root), builds benchmark/ in Release into build_benchmark/ (or $VG_BENCH_BUILD), runs the flight
+work-precision benchmark (several minutes), then the contact benchmark (about half an hour on
+a shared 2-core machine), builds the package into build_catkin/ (or $VG_BUILD) if stone_node is
+not there yet and measures the node overhead (scripts/node_overhead.sh, about a minute), then
+writes into DIR (default docs/benchmarks/): README.md (flight tables, machine, date),
+results.csv, work_precision_*.png, headline.md, node_overhead.md, and contact.md (contact
+tables, settings of every engine, machine, date), contact_results.csv, contact_bounces.csv,
+contact_*.png, contact_headline.md.
 
-  --quick        dt only down to 2^-10 s and fewer repetitions (a smoke run, minutes -> seconds)
-  --no-install   do not install packages (fail if something is missing)
-  --skip-node    skip the node overhead measurement (keeps an existing node_overhead.md)
-  --report-only  rewrite DIR from the last run's raw results (build_benchmark/results)
-  --out DIR      output directory (default docs/benchmarks)
-  -h, --help     this help
+  --quick         dt only down to 2^-10 s and fewer repetitions (a smoke run, minutes -> seconds)
+  --no-install    do not install packages (fail if something is missing)
+  --skip-node     skip the node overhead measurement (keeps an existing node_overhead.md)
+  --flight-only   only the flight benchmark (and the node overhead); contact files are kept
+  --contact-only  only the contact benchmark; flight files and node_overhead.md are kept
+  --report-only   rewrite DIR from the last run's raw results (build_benchmark/results and
+                  build_benchmark/contact_results)
+  --out DIR       output directory (default docs/benchmarks)
+  -h, --help      this help
 EOF
 }
 
@@ -33,6 +40,8 @@ quick=0
 report_only=0
 install=1
 node=1
+flight=1
+contact=1
 out="$VG_ROOT/docs/benchmarks"
 while [ $# -gt 0 ]; do
   case "$1" in
@@ -41,14 +50,21 @@ while [ $# -gt 0 ]; do
     --no-install) install=0 ;;
     --skip-node) node=0 ;;
     --report-only) report_only=1; install=0; node=0 ;;
+    --flight-only) contact=0 ;;
+    --contact-only) flight=0; node=0 ;;
     --out) out="$(mkdir -p "$2" && cd "$2" && pwd)"; shift ;;
     *) echo "benchmark.sh: unknown option $1 (see --help)" >&2; exit 2 ;;
   esac
   shift
 done
+if [ "$flight" = 0 ] && [ "$contact" = 0 ]; then
+  echo "benchmark.sh: --flight-only and --contact-only exclude each other (see --help)" >&2
+  exit 2
+fi
 
 build="${VG_BENCH_BUILD:-$VG_ROOT/build_benchmark}"
 raw="$build/results"
+contact_raw="$build/contact_results"
 if [ "$report_only" = 0 ]; then
 BENCH_PACKAGES=(build-essential cmake pkg-config libeigen3-dev libbullet-dev libode-dev
   libmujoco-dev libbenchmark-dev procps)
@@ -59,7 +75,7 @@ if [ "$install" = 1 ]; then
 fi
 export PATH="/usr/bin:$PATH"
 
-mkdir -p "$build" "$raw" "$out"
+mkdir -p "$build" "$raw" "$contact_raw" "$out"
 echo "benchmark.sh: building benchmark/ (Release) in $build" >&2
 cmake -S "$VG_ROOT/benchmark" -B "$build" -DCMAKE_BUILD_TYPE=Release >"$build/configure.log" 2>&1 ||
   { cat "$build/configure.log" >&2; exit 1; }
@@ -69,10 +85,11 @@ cmake --build "$build" -- -j"$(nproc)" >"$build/build.log" 2>&1 ||
 # The machine and how busy it was: absolute timings depend on both, ratios much less.
 cpu="$(grep -m1 'model name' /proc/cpuinfo | sed 's/.*: //')"
 cores="$(nproc)"
-load_before="$(cut -d' ' -f1-3 /proc/loadavg)"
-date_utc="$(date -u '+%Y-%m-%d %H:%M UTC')"
 compiler="$(c++ --version | head -1)"
 
+if [ "$flight" = 1 ]; then
+load_before="$(cut -d' ' -f1-3 /proc/loadavg)"
+date_utc="$(date -u '+%Y-%m-%d %H:%M UTC')"
 args=(--out "$raw")
 [ "$quick" = 1 ] && args+=(--quick --budget 0.005 --timed-steps 4096)
 echo "benchmark.sh: running work_precision ${args[*]} (progress below)" >&2
@@ -81,6 +98,30 @@ echo "benchmark.sh: running work_precision ${args[*]} (progress below)" >&2
 load_after="$(cut -d' ' -f1-3 /proc/loadavg)"
 echo "$date_utc|$cpu|$cores|$compiler|$load_before|$load_after" >"$raw/machine.txt"
 fi
+
+if [ "$contact" = 1 ]; then
+load_before="$(cut -d' ' -f1-3 /proc/loadavg)"
+date_utc="$(date -u '+%Y-%m-%d %H:%M UTC')"
+args=(--out "$contact_raw")
+[ "$quick" = 1 ] && args+=(--quick)
+echo "benchmark.sh: running contact_benchmark ${args[*]} (progress below)" >&2
+(cd "$build" && ./contact_benchmark "${args[@]}")
+load_after="$(cut -d' ' -f1-3 /proc/loadavg)"
+peers="$(dpkg-query -W -f='${Package} ${Version}, ' libbullet-dev libode-dev libmujoco-dev \
+  2>/dev/null | sed 's/, $//')"
+echo "$date_utc|$cpu|$cores|$compiler|$load_before|$load_after|$peers" >"$contact_raw/machine.txt"
+fi
+fi  # report_only
+if [ "$flight" = 1 ] && [ ! -f "$raw/machine.txt" ]; then
+  echo "benchmark.sh: no flight results in $raw (run without --report-only first)" >&2
+  exit 1
+fi
+if [ "$contact" = 1 ] && [ ! -f "$contact_raw/machine.txt" ]; then
+  echo "benchmark.sh: no contact results in $contact_raw (run without --report-only first)" >&2
+  exit 1
+fi
+
+if [ "$flight" = 1 ]; then
 IFS='|' read -r date_utc cpu cores compiler load_before load_after <"$raw/machine.txt"
 cp "$raw/results.csv" "$out/results.csv"
 
@@ -232,7 +273,8 @@ fastest-repetition column of results.csv.
   ODE's finite rotation are exact per step there (exponential map), ODE's default infinitesimal
   update is first order.
 
-  cat <<'EOF'
+The contact benchmark (a stone dropped, tossed, slid and laid on the board) has its own page:
+[contact.md](contact.md).
 
 ## Results
 
@@ -256,3 +298,8 @@ EOF
 } >"$out/headline.md"
 
 echo "benchmark.sh: wrote $out/README.md, results.csv, ${plots[*]}, headline.md" >&2
+fi
+
+if [ "$contact" = 1 ]; then
+  "$VG_ROOT/scripts/contact_report.sh" "$contact_raw" "$out"
+fi
