@@ -8,7 +8,8 @@ target_link_libraries(test_bag_analysis virtual_go_bag_report GTest::gtest_main)
 target_compile_definitions(test_bag_analysis PRIVATE VG_README="${PROJECT_SOURCE_DIR}/README.md")
 
 # The real binary on bags the test writes with the rosbag C++ API.
-catkin_add_gtest(test_bag_report_cli test/bag/test_bag_report_cli.cpp test/support/test_bags.cpp)
+catkin_add_gtest(test_bag_report_cli test/bag/test_bag_report_cli.cpp test/support/test_bags.cpp
+  test/support/bag_report_run.cpp)
 target_link_libraries(test_bag_report_cli virtual_go_bag_report GTest::gtest_main)
 target_compile_definitions(test_bag_report_cli PRIVATE
   BAG_REPORT_PATH="$<TARGET_FILE:bag_report>"
@@ -41,6 +42,7 @@ add_rostest(test/bag/bag_replay.test DEPENDENCIES test_bag_replay
 
 # Contact checks on bags of the core's World written with the rosbag C++ API (no node).
 catkin_add_gtest(test_bag_contact test/bag/test_bag_contact.cpp test/support/world_bags.cpp
+  test/support/bag_report_run.cpp
   TIMEOUT 600)
 target_link_libraries(test_bag_contact virtual_go_bag_report GTest::gtest_main)
 target_compile_definitions(test_bag_contact PRIVATE

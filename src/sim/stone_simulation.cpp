@@ -312,23 +312,7 @@ void StoneSimulation::step(UpdateResult& result) {
   if (!replaced) integrator_->advance(next, checked_.dt_s, flight_cache_);
   // Everything due at this step applies in order and starts one segment, named after the last
   // change: an event each would make segments of zero length at the same stamp.
-  std::optional<EventReason> reason;
-  if (auto_reset) {
-    next = checked_.initial_state;
-    reason = EventReason::auto_reset;
-  }
-  for (const Change& change : pending_) {
-    if (change.replaces_state()) {
-      next = change.state;
-    } else {
-      const Eigen::Vector3d omega_world =
-          change.frame == RequestFrame::body
-              ? rotate_without_overflow(next.orientation, change.omega)
-              : change.omega;
-      next = with_angular_velocity_world(model, next, omega_world);
-    }
-    reason = change.reason;
-  }
+  const std::optional<EventReason> reason = apply_changes(auto_reset, next);
   // A new segment's event carries the outputs of its first state: checked before anything
   // changes. Other steps leave them to the end of update().
   std::optional<StateOutput> output;
@@ -349,6 +333,30 @@ void StoneSimulation::step(UpdateResult& result) {
 
 namespace virtual_go {
 
+// The changes due at this step (an auto reset, then the pending requests in order) applied to
+// `next`; the reason of the segment they start (the last change's), or none.
+std::optional<EventReason> StoneSimulation::apply_changes(bool auto_reset,
+                                                          RigidBodyState& next) const {
+  std::optional<EventReason> reason;
+  if (auto_reset) {
+    next = checked_.initial_state;
+    reason = EventReason::auto_reset;
+  }
+  for (const Change& change : pending_) {
+    if (change.replaces_state()) {
+      next = change.state;
+    } else {
+      const Eigen::Vector3d omega_world =
+          change.frame == RequestFrame::body
+              ? rotate_without_overflow(next.orientation, change.omega)
+              : change.omega;
+      next = with_angular_velocity_world(checked_.setup.model, next, omega_world);
+    }
+    reason = change.reason;
+  }
+  return reason;
+}
+
 void StoneSimulation::step_world(UpdateResult& result) {
   const std::int64_t next_ns = clock_.next_time_ns();
   const bool auto_reset = auto_reset_due(next_ns);
@@ -368,23 +376,7 @@ void StoneSimulation::step_world(UpdateResult& result) {
   for (const WorldEvent& e : world_events_) events.push_back(segment_event(e));
   // The changes due at this step, in order, as in step().
   RigidBodyState next = held_ ? state_ : world.state(0);
-  std::optional<EventReason> reason;
-  if (auto_reset) {
-    next = checked_.initial_state;
-    reason = EventReason::auto_reset;
-  }
-  for (const Change& change : pending_) {
-    if (change.replaces_state()) {
-      next = change.state;
-    } else {
-      const Eigen::Vector3d omega_world =
-          change.frame == RequestFrame::body
-              ? rotate_without_overflow(next.orientation, change.omega)
-              : change.omega;
-      next = with_angular_velocity_world(model, next, omega_world);
-    }
-    reason = change.reason;
-  }
+  const std::optional<EventReason> reason = apply_changes(auto_reset, next);
   if (reason) {
     SegmentEvent command;
     command.stamp_ns = next_ns;

@@ -17,6 +17,7 @@
 #include <sstream>
 #include <string>
 
+#include "support/bag_report_run.h"
 #include "support/world_bags.h"
 #include "virtual_go/bag/bag_reader.h"
 #include "virtual_go/bag/report.h"
@@ -29,11 +30,8 @@ using virtual_go_test::Corruption;
 using virtual_go_test::WorldRunSpec;
 using virtual_go_test::WorldRunSummary;
 
-struct Result {
-  int exit_code = -1;
-  std::string out;
-  std::string err;
-};
+using Result = virtual_go_test::ReportRun;
+using virtual_go_test::read_text;
 
 std::string dir() {
   static const std::string d = [] {
@@ -44,22 +42,8 @@ std::string dir() {
   return d;
 }
 
-std::string read_text(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 Result run_report(const std::string& args) {
-  const std::string out = dir() + "/stdout.txt", err = dir() + "/stderr.txt";
-  const std::string cmd = std::string(BAG_REPORT_PATH) + " " + args + " >" + out + " 2>" + err;
-  const int status = std::system(cmd.c_str());
-  Result r;
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-  r.out = read_text(out);
-  r.err = read_text(err);
-  return r;
+  return virtual_go_test::run_bag_report(BAG_REPORT_PATH, dir(), args);
 }
 
 double half_height() { return virtual_go::make_stone(virtual_go::StoneSpec{}).shape.half_height(); }

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "support/bag_report_run.h"
 #include "support/test_bags.h"
 
 namespace {
@@ -21,11 +22,8 @@ namespace {
 using virtual_go_test::SyntheticRun;
 using virtual_go_test::write_run_bag;
 
-struct Result {
-  int exit_code = -1;
-  std::string out;
-  std::string err;
-};
+using Result = virtual_go_test::ReportRun;
+using virtual_go_test::read_text;
 
 std::string dir() {
   static const std::string d = [] {
@@ -36,22 +34,8 @@ std::string dir() {
   return d;
 }
 
-std::string read_text(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 Result run_report(const std::string& args) {
-  const std::string out = dir() + "/stdout.txt", err = dir() + "/stderr.txt";
-  const std::string cmd = std::string(BAG_REPORT_PATH) + " " + args + " >" + out + " 2>" + err;
-  const int status = std::system(cmd.c_str());
-  Result r;
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-  r.out = read_text(out);
-  r.err = read_text(err);
-  return r;
+  return virtual_go_test::run_bag_report(BAG_REPORT_PATH, dir(), args);
 }
 
 std::size_t lines(const std::string& text) {

@@ -11,6 +11,8 @@
 #include <cmath>
 #include <limits>
 
+#include "support/bag_messages.h"
+
 namespace virtual_go_test {
 namespace {
 
@@ -20,44 +22,6 @@ const Eigen::Vector3d kV0(0.3, 0.1, 2.0);
 // Tilted 30 degrees about x; spin mostly about the symmetry axis with a wobble.
 const Eigen::Quaterniond kQ0(Eigen::AngleAxisd(M_PI / 6, Eigen::Vector3d::UnitX()));
 const Eigen::Vector3d kOmegaBody0(4.0, -3.0, 25.0);
-
-ros::Time stamp(std::int64_t ns) {
-  ros::Time t;
-  t.fromNSec(static_cast<std::uint64_t>(ns));
-  return t;
-}
-
-geometry_msgs::Pose pose_msg(const Eigen::Vector3d& x, const Eigen::Quaterniond& q) {
-  geometry_msgs::Pose p;
-  p.position.x = x.x();
-  p.position.y = x.y();
-  p.position.z = x.z();
-  p.orientation.w = q.w();
-  p.orientation.x = q.x();
-  p.orientation.y = q.y();
-  p.orientation.z = q.z();
-  return p;
-}
-
-geometry_msgs::Vector3 vec_msg(const Eigen::Vector3d& v) {
-  geometry_msgs::Vector3 m;
-  m.x = v.x();
-  m.y = v.y();
-  m.z = v.z();
-  return m;
-}
-
-// rosbag stores a given connection header as is, so it must carry the type fields too.
-template <class M>
-boost::shared_ptr<ros::M_string> latched_header() {
-  auto h = boost::make_shared<ros::M_string>();
-  (*h)["type"] = ros::message_traits::datatype<M>();
-  (*h)["md5sum"] = ros::message_traits::md5sum<M>();
-  (*h)["message_definition"] = ros::message_traits::definition<M>();
-  (*h)["latching"] = "1";
-  (*h)["callerid"] = "/stone";
-  return h;
-}
 
 }  // namespace
 

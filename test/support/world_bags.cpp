@@ -10,6 +10,7 @@
 #include <limits>
 #include <vector>
 
+#include "support/bag_messages.h"
 #include "virtual_go/go/stone.h"
 #include "virtual_go/world/world.h"
 
@@ -18,41 +19,8 @@ namespace {
 
 namespace vg = virtual_go;
 
-ros::Time stamp(std::int64_t ns) {
-  ros::Time t;
-  t.fromNSec(static_cast<std::uint64_t>(ns));
-  return t;
-}
-
-geometry_msgs::Vector3 vec_msg(const Eigen::Vector3d& v) {
-  geometry_msgs::Vector3 m;
-  m.x = v.x();
-  m.y = v.y();
-  m.z = v.z();
-  return m;
-}
-
 geometry_msgs::Pose pose_msg(const vg::RigidBodyState& s) {
-  geometry_msgs::Pose p;
-  p.position.x = s.position_world.x();
-  p.position.y = s.position_world.y();
-  p.position.z = s.position_world.z();
-  p.orientation.w = s.orientation.w();
-  p.orientation.x = s.orientation.x();
-  p.orientation.y = s.orientation.y();
-  p.orientation.z = s.orientation.z();
-  return p;
-}
-
-template <class M>
-boost::shared_ptr<ros::M_string> latched_header() {
-  auto h = boost::make_shared<ros::M_string>();
-  (*h)["type"] = ros::message_traits::datatype<M>();
-  (*h)["md5sum"] = ros::message_traits::md5sum<M>();
-  (*h)["message_definition"] = ros::message_traits::definition<M>();
-  (*h)["latching"] = "1";
-  (*h)["callerid"] = "/stone";
-  return h;
+  return virtual_go_test::pose_msg(s.position_world, s.orientation);
 }
 
 enum class Kind { flight, contact, rest };

@@ -115,6 +115,7 @@ class StoneSimulation {
   void advance_to(std::int64_t now_ns, UpdateResult& result);
   void step(UpdateResult& result);
   void step_world(UpdateResult& result);
+  std::optional<EventReason> apply_changes(bool auto_reset, RigidBodyState& next) const;
   // With the board: the World restarted with state_ at stamp_ns (its new epoch), and its events
   // at that instant (a stone placed on the board comes to rest) reported.
   void restart_world(std::int64_t stamp_ns, UpdateResult& result);
