@@ -3,9 +3,12 @@
 #pragma once
 
 #include <geometry_msgs/Pose.h>
+#include <geometry_msgs/TransformStamped.h>
 #include <geometry_msgs/Vector3.h>
 #include <ros/message_traits.h>
 #include <ros/time.h>
+#include <std_msgs/Header.h>
+#include <tf2_msgs/TFMessage.h>
 
 #include <Eigen/Geometry>
 #include <boost/make_shared.hpp>
@@ -40,6 +43,20 @@ inline geometry_msgs::Pose pose_msg(const Eigen::Vector3d& x, const Eigen::Quate
   p.orientation.y = q.y();
   p.orientation.z = q.z();
   return p;
+}
+
+// The node's one transform, header.frame_id (world) -> "stone".
+inline tf2_msgs::TFMessage stone_tf_msg(const std_msgs::Header& header,
+                                        const Eigen::Vector3d& position_world,
+                                        const geometry_msgs::Quaternion& orientation) {
+  geometry_msgs::TransformStamped transform;
+  transform.header = header;
+  transform.child_frame_id = "stone";
+  transform.transform.translation = vec_msg(position_world);
+  transform.transform.rotation = orientation;
+  tf2_msgs::TFMessage tf;
+  tf.transforms.push_back(transform);
+  return tf;
 }
 
 // The connection header of a latched topic of the node. rosbag stores a given connection header

@@ -134,13 +134,8 @@ std::size_t write_run_bag(const std::string& path, const SyntheticRun& run) {
     geometry_msgs::PoseStamped pose;
     pose.header = odom.header;
     pose.pose = odom.pose.pose;
-    tf2_msgs::TFMessage tf;
-    geometry_msgs::TransformStamped transform;
-    transform.header = odom.header;
-    transform.child_frame_id = "stone";
-    transform.transform.translation = vec_msg(s.position);
-    transform.transform.rotation = odom.pose.pose.orientation;
-    tf.transforms.push_back(transform);
+    const tf2_msgs::TFMessage tf =
+        stone_tf_msg(odom.header, s.position, odom.pose.pose.orientation);
 
     const int copies = std::count(run.duplicate.begin(), run.duplicate.end(), i) > 0 ? 2 : 1;
     for (int c = 0; c < copies; ++c) {

@@ -179,13 +179,8 @@ WorldRunSummary write_world_bag(const std::string& path, const WorldRunSpec& spe
     odom.twist.twist.linear = vec_msg(to_body * s.velocity_world);
     odom.twist.twist.angular =
         vec_msg(to_body * model.angular_velocity_world(s.orientation, s.angular_momentum_world));
-    tf2_msgs::TFMessage tf;
-    geometry_msgs::TransformStamped transform;
-    transform.header = odom.header;
-    transform.child_frame_id = "stone";
-    transform.transform.translation = vec_msg(s.position_world);
-    transform.transform.rotation = odom.pose.pose.orientation;
-    tf.transforms.push_back(transform);
+    const tf2_msgs::TFMessage tf =
+        stone_tf_msg(odom.header, s.position_world, odom.pose.pose.orientation);
     bag.write("/stone/odom", when, odom);
     bag.write("/tf", when, tf);
     ++summary.odom;
