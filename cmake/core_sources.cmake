@@ -24,6 +24,8 @@ set(VG_CORE_SOURCES
   src/go/stone_materials.cpp
   src/go/stone.cpp
   src/go/board.cpp
+  src/go/stone_color.cpp
+  src/go/go_point.cpp
   src/go/board_distance.cpp
   src/contact/material.cpp
   src/contact/flight_gap_bound.cpp

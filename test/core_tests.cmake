@@ -22,6 +22,7 @@ foreach(core_test
     geometry/test_lens_distance
     go/test_board
     go/test_board_distance
+    go/test_go_point
     contact/test_material
     contact/test_flight_gap_bound
     contact/test_time_of_impact
