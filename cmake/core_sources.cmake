@@ -26,6 +26,9 @@ set(VG_CORE_SOURCES
   src/go/board.cpp
   src/go/stone_color.cpp
   src/go/go_point.cpp
+  src/go/sgf.cpp
+  src/go/go_position.cpp
+  src/go/game_replay.cpp
   src/go/board_distance.cpp
   src/contact/material.cpp
   src/contact/flight_gap_bound.cpp

@@ -23,6 +23,9 @@ foreach(core_test
     go/test_board
     go/test_board_distance
     go/test_go_point
+    go/test_sgf
+    go/test_go_position
+    go/test_game_replay
     contact/test_material
     contact/test_flight_gap_bound
     contact/test_time_of_impact
