@@ -15,6 +15,7 @@ VG_PACKAGES=(
   python3-rostest python3-rosbag ros-message-generation ros-std-srvs ros-geometry-msgs
   ros-nav-msgs ros-visualization-msgs libeigen3-dev libboost-dev libgtest-dev
   rviz tf2-tools tf-tools xvfb xauth imagemagick gnuplot-nox procps
+  gnugo
 )
 # What the README's user commands need, which --no-install-recommends leaves out: rosrun
 # (rosbash, only a Recommends of ros-core), and the Python modules of every message type a
@@ -65,8 +66,37 @@ vg_configure_and_build() {
   cmake --build "$VG_BUILD" -- -j"$(nproc)"
 }
 
+# Real game records for the replay tests: the professional games Debian's kigo package ships
+# (Honinbo-51-5.sgf, Mehin-21-2.sgf), unpacked into the build folder without installing kigo
+# (and KDE). They are GPL-2+ like kigo, so they are fetched, not kept in this repository.
+# Idempotent; a failure warns (the tests that need them then say what is missing).
+VG_KIGO_DIR="$VG_BUILD/test_data/kigo"
+vg_fetch_game_records() {
+  local games="$VG_KIGO_DIR/usr/share/kigo/games"
+  [ -f "$games/Honinbo-51-5.sgf" ] && [ -f "$games/Mehin-21-2.sgf" ] && return 0
+  local download="$VG_BUILD/test_data/download"
+  rm -rf "$download" && mkdir -p "$download" "$VG_KIGO_DIR" || return 1
+  # apt-get download needs the package lists; fetch them once if they are missing.
+  (cd "$download" && apt-get download kigo >/dev/null 2>&1) ||
+    { vg_sudo env DEBIAN_FRONTEND=noninteractive apt-get update -qq &&
+      (cd "$download" && apt-get download kigo >/dev/null); } || {
+    echo "virtual_go: could not download Debian's kigo package (game records for the tests)" >&2
+    return 1
+  }
+  dpkg-deb -x "$download"/kigo_*.deb "$download/x" &&
+    mkdir -p "$games" &&
+    cp "$download"/x/usr/share/kigo/games/*.sgf "$games/" &&
+    cp "$download"/x/usr/share/doc/kigo/copyright "$VG_KIGO_DIR/copyright" &&
+    rm -rf "$download" || {
+    echo "virtual_go: could not unpack the kigo game records" >&2
+    return 1
+  }
+}
+
 vg_setup() {
   vg_install_packages "${VG_PACKAGES[@]}" || return 1
+  mkdir -p "$VG_BUILD"
+  vg_fetch_game_records || echo "virtual_go: continuing without the kigo game records" >&2
   vg_configure_and_build "$@"
 }
 
