@@ -1,0 +1,13 @@
+# Tests of sgf_replay. Included by CMakeLists.txt inside if(CATKIN_ENABLE_TESTING), after
+# test/go_tests.cmake (which finds GNU Go and names the game records).
+
+# The ROS-free part: options, and the calls in order against a recording fake. gtest, no master.
+catkin_add_gtest(test_replay test/replay/test_replay_options.cpp test/replay/test_replay_runner.cpp)
+target_link_libraries(test_replay virtual_go_replay GTest::gtest_main)
+
+# The executable against a stand-in for the node (the node's ~place and ~remove come later):
+# a Python node serving ~clear/~place/~remove that records the calls; the board they leave must
+# be GNU Go's for the same record.
+add_rostest(test/replay/sgf_replay.test
+  ARGS game:=${VG_KIGO_GAMES}/Honinbo-51-5.sgf gnugo:=${VG_GNUGO}
+  DEPENDENCIES sgf_replay)
