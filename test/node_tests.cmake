@@ -43,7 +43,7 @@ endforeach()
 add_rostest(test/ros/rviz_smoke.test DEPENDENCIES stone_node)
 
 # README.md, pasted: its commands run as a user types them (test/ros/test_readme_commands.py).
-add_rostest(test/ros/readme_commands.test DEPENDENCIES stone_node bag_report)
+add_rostest(test/ros/readme_commands.test DEPENDENCIES stone_node bag_report sgf_replay)
 # use_sim_time without /clock: the node says it waits (test/ros/test_stone_node_clock_wait.py).
 add_rostest(test/ros/stone_node_clock_wait.test DEPENDENCIES stone_node)
 

@@ -4,6 +4,8 @@
 # The ROS-free part: options, and the calls in order against a recording fake. gtest, no master.
 catkin_add_gtest(test_replay test/replay/test_replay_options.cpp test/replay/test_replay_runner.cpp)
 target_link_libraries(test_replay virtual_go_replay GTest::gtest_main)
+# Checks README.md's option and exit code tables against the code.
+target_compile_definitions(test_replay PRIVATE VG_README="${PROJECT_SOURCE_DIR}/README.md")
 
 # The executable against a stand-in for the node (the node's ~place and ~remove come later):
 # a Python node serving ~clear/~place/~remove that records the calls; the board they leave must

@@ -30,11 +30,11 @@ const std::vector<OptionSpec>& numeric_options() {
       {"--interval", "S", "wall-clock seconds between moves", 0.0, 3600.0, false,
        [](ReplayOptions& o, double v) { o.interval_s = v; },
        [](const ReplayOptions& o) { return format_value(o.interval_s); }},
-      {"--to-move", "N", "stop after move N (0: only the setup before the first move)", 0.0,
+      {"--to-move", "N", "the last move to play; 0: only the setup before the first move", 0.0,
        100000.0, true, [](ReplayOptions& o, double v) { o.to_move = static_cast<int>(v); },
        [](const ReplayOptions&) { return std::string("the whole game"); }},
       {"--drop-height", "H",
-       "metres from the board's top face to each stone's lowest point; 0 = set down at rest", 0.0,
+       "m from the board's top face to each stone's lowest point; 0: set down at rest", 0.0,
        1.0, false, [](ReplayOptions& o, double v) { o.drop_height_m = v; },
        [](const ReplayOptions& o) { return format_value(o.drop_height_m); }},
       {"--timeout", "S", "seconds to wait for the node's services", 0.0, 3600.0, false,
@@ -76,8 +76,25 @@ const std::vector<ExitCodeText>& exit_codes() {
   return table;
 }
 
+const std::vector<OptionText>& option_texts() {
+  static const std::vector<OptionText> table = [] {
+    const ReplayOptions defaults;
+    std::vector<OptionText> rows;
+    for (const OptionSpec& o : numeric_options()) {
+      rows.push_back({o.name + " " + o.value, o.help,
+                      format_value(o.min) + " to " + format_value(o.max),
+                      o.default_text(defaults)});
+    }
+    rows.push_back({"--node NAME",
+                    "the stone node whose NAME/clear, NAME/place and NAME/remove are called", "",
+                    defaults.node});
+    rows.push_back({"-h, --help", "this text", "", ""});
+    return rows;
+  }();
+  return table;
+}
+
 std::string replay_usage() {
-  const ReplayOptions defaults;
   std::ostringstream out;
   out << "usage: rosrun virtual_go sgf_replay GAME.sgf [options]\n"
          "\n"
@@ -89,18 +106,16 @@ std::string replay_usage() {
          "placed and removed likewise; passes place nothing.\n"
          "\n"
          "options:\n";
-  for (const OptionSpec& o : numeric_options()) {
-    out << "  " << o.name << " " << o.value << std::string(16 - o.name.size() - o.value.size(), ' ')
-        << o.help << " (" << format_value(o.min) << " to " << format_value(o.max) << "; default "
-        << o.default_text(defaults) << ")\n";
+  for (const OptionText& o : option_texts()) {
+    out << "  " << o.option << std::string(o.option.size() < 18 ? 18 - o.option.size() : 1, ' ')
+        << o.meaning;
+    if (!o.range.empty()) out << " (" << o.range;
+    if (!o.default_value.empty())
+      out << (o.range.empty() ? " (" : "; ") << "default " << o.default_value;
+    if (!o.range.empty() || !o.default_value.empty()) out << ")";
+    out << "\n";
   }
-  out << "  --node NAME        the stone node whose NAME/clear, NAME/place, NAME/remove are\n"
-         "                     called (default "
-      << defaults.node
-      << ")\n"
-         "  -h, --help         this text\n"
-         "\n"
-         "exit codes:\n";
+  out << "\nexit codes:\n";
   for (const ExitCodeText& e : exit_codes()) out << "  " << e.code << "  " << e.meaning << "\n";
   return out.str();
 }

@@ -3,11 +3,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <functional>
 #include <limits>
 #include <random>
 #include <set>
 
+#include "support/readme_tables.h"
 #include "virtual_go/common/validation.h"
 #include "virtual_go/go/go_point.h"
 #include "virtual_go/go/stone_color.h"
@@ -209,4 +211,21 @@ TEST(StoneColor, NamesAndOpponents) {
   const std::string e = error_of([] { vg::parse_stone_color("Black"); });
   EXPECT_NE(e.find("color | unknown stone color 'Black' (known: black white)"), std::string::npos)
       << e;
+}
+
+TEST(GoPoint, TheReadmeTableMatchesTheCode) {
+  const auto rows = vgtest::readme_table(VG_README, "### Go points");
+  ASSERT_EQ(rows.size(), 5u);
+  const vg::BoardGeometry board;
+  for (const auto& row : rows) {
+    ASSERT_EQ(row.size(), 4u);
+    const vg::GoPoint p = vg::parse_gtp_point(row[1]);
+    EXPECT_EQ(vg::sgf_name(p), row[2]) << row[1];
+    double x_mm = 0;
+    double y_mm = 0;
+    ASSERT_EQ(std::sscanf(row[3].c_str(), "%lf, %lf", &x_mm, &y_mm), 2) << row[3];
+    const Eigen::Vector3d at = vg::go_point_world(board, p);
+    EXPECT_NEAR(at.x() * 1000, x_mm, 1e-9) << row[1];
+    EXPECT_NEAR(at.y() * 1000, y_mm, 1e-9) << row[1];
+  }
 }

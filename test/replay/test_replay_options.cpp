@@ -3,6 +3,7 @@
 // tables.
 #include <gtest/gtest.h>
 
+#include "support/readme_tables.h"
 #include "virtual_go/replay/replay_options.h"
 
 namespace rp = virtual_go::replay;
@@ -70,4 +71,20 @@ TEST(ReplayOptions, HelpListsEveryOptionAndExitCode) {
         << e.code;
   }
   EXPECT_EQ(rp::exit_codes().size(), 6u);
+}
+
+TEST(ReplayOptions, TheReadmeTablesMatchTheCode) {
+  const auto options = vgtest::readme_table(VG_README, "#### `sgf_replay` options");
+  ASSERT_EQ(options.size(), rp::option_texts().size());
+  for (std::size_t k = 0; k < options.size(); ++k) {
+    const rp::OptionText& o = rp::option_texts()[k];
+    EXPECT_EQ(options[k], (std::vector<std::string>{o.option, o.meaning, o.range, o.default_value}))
+        << o.option;
+  }
+  const auto codes = vgtest::readme_table(VG_README, "#### `sgf_replay` exit codes");
+  ASSERT_EQ(codes.size(), rp::exit_codes().size());
+  for (std::size_t k = 0; k < codes.size(); ++k) {
+    const rp::ExitCodeText& e = rp::exit_codes()[k];
+    EXPECT_EQ(codes[k], (std::vector<std::string>{std::to_string(e.code), e.meaning}));
+  }
 }

@@ -27,6 +27,15 @@ struct ExitCodeText {
 };
 const std::vector<ExitCodeText>& exit_codes();
 
+// Each option as --help and the README's table show it.
+struct OptionText {
+  std::string option;  // "--interval S"
+  std::string meaning;
+  std::string range;          // "0 to 3600", or "" for options without a number
+  std::string default_value;  // "" when there is none
+};
+const std::vector<OptionText>& option_texts();
+
 struct ReplayOptions {
   bool help = false;
   std::string game_path;
