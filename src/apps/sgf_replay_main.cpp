@@ -15,7 +15,9 @@
 namespace vg = virtual_go;
 namespace rp = virtual_go::replay;
 
-int main(int argc, char** argv) {
+namespace {
+
+int replay(int argc, char** argv) {
   // Takes the ROS remappings (name:=value) out of argv; contacts no master yet.
   ros::init(argc, argv, "sgf_replay", ros::init_options::AnonymousName);
   rp::ReplayOptions options;
@@ -72,4 +74,17 @@ int main(int argc, char** argv) {
       rp::run_replay(steps, options.interval_s, options.drop_height_m, board, std::cout);
   if (result.exit_code != rp::kExitOk) std::cerr << "sgf_replay: " << result.error << std::endl;
   return result.exit_code;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // Every expected failure has its exit code above; anything else (a ROS exception, memory) is
+  // reported the same way, as a failed replay, rather than as an abort.
+  try {
+    return replay(argc, argv);
+  } catch (const std::exception& e) {
+    std::cerr << "sgf_replay: " << e.what() << std::endl;
+    return rp::kExitServiceFailed;
+  }
 }
