@@ -44,7 +44,7 @@ std::vector<std::string> RosBoardServices::wait_for_services(double timeout_s) c
 ServiceReply RosBoardServices::clear() {
   std_srvs::Trigger call;
   if (!clear_.call(call)) return no_answer(clear_name_);
-  return {call.response.success, call.response.message, ""};
+  return {call.response.success != 0, call.response.message, ""};
 }
 
 ServiceReply RosBoardServices::place(const std::string& point, const std::string& color,
@@ -56,14 +56,14 @@ ServiceReply RosBoardServices::place(const std::string& point, const std::string
   // pose and twist stay at the message defaults: the point gives the position, lying flat, at
   // rest.
   if (!place_.call(call)) return no_answer(place_name_);
-  return {call.response.success, call.response.message, call.response.name};
+  return {call.response.success != 0, call.response.message, call.response.name};
 }
 
 ServiceReply RosBoardServices::remove(const std::string& name) {
   virtual_go::RemoveStone call;
   call.request.name = name;
   if (!remove_.call(call)) return no_answer(remove_name_);
-  return {call.response.success, call.response.message, ""};
+  return {call.response.success != 0, call.response.message, ""};
 }
 
 bool RosBoardServices::wait(double seconds) {
