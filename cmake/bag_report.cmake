@@ -10,8 +10,10 @@ add_library(virtual_go_bag_report
   src/bag/options.cpp
   src/bag/report.cpp
   src/bag/bag_reader.cpp)
-target_include_directories(virtual_go_bag_report PUBLIC include ${catkin_INCLUDE_DIRS}
-  ${CATKIN_DEVEL_PREFIX}/${CATKIN_GLOBAL_INCLUDE_DESTINATION})
+# ROS's headers and the generated messages' come from this folder's include_directories
+# (above; generate_messages() adds the devel space's include folder): exported PUBLIC they would
+# be this machine's absolute paths (catkin_lint: external_interface_path, external_directory).
+target_include_directories(virtual_go_bag_report PUBLIC include)
 target_link_libraries(virtual_go_bag_report PUBLIC ${catkin_LIBRARIES} virtual_go_core)
 # The reader includes the generated virtual_go/StoneInfo.h and StoneEvent.h.
 add_dependencies(virtual_go_bag_report ${${PROJECT_NAME}_EXPORTED_TARGETS}

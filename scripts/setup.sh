@@ -14,7 +14,7 @@ VG_PACKAGES=(
   ros-core-dev libroscpp-dev libtf2-ros-dev libtf2-eigen-dev librosbag-dev librostest-dev
   python3-rostest python3-rosbag ros-message-generation ros-std-srvs ros-geometry-msgs
   ros-nav-msgs ros-visualization-msgs libeigen3-dev libboost-dev libgtest-dev
-  rviz tf2-tools tf-tools xvfb xauth imagemagick gnuplot-nox procps
+  rviz tf2-tools tf-tools xvfb xauth imagemagick gnuplot-nox procps catkin-lint
   gnugo
 )
 # What the README's user commands need, which --no-install-recommends leaves out: rosrun
@@ -51,7 +51,9 @@ vg_environment() {
   mkdir -p "$ROS_HOME"
 }
 
-vg_configure_and_build() {
+# Configures $VG_BUILD (the log in $VG_BUILD/configure.log, shown when cmake fails). Alone,
+# it is what test/package/test_configure_long_path.py runs from a deep checkout.
+vg_configure() {
   vg_environment
   # catkin bakes the environment the run_tests target gives every test (setup_cached.sh) at
   # configure time, with only the devel paths that exist then: without this folder a first
@@ -63,6 +65,10 @@ vg_configure_and_build() {
     echo "virtual_go: cmake configure failed" >&2
     return 1
   }
+}
+
+vg_configure_and_build() {
+  vg_configure "$@" || return 1
   cmake --build "$VG_BUILD" -- -j"$(nproc)"
 }
 

@@ -10,6 +10,9 @@ target_compile_definitions(test_replay PRIVATE VG_README="${PROJECT_SOURCE_DIR}/
 # The executable against a stand-in for the node (the node's ~place and ~remove come later):
 # a Python node serving ~clear/~place/~remove that records the calls; the board they leave must
 # be GNU Go's for the same record.
-add_rostest(test/replay/sgf_replay.test
-  ARGS game:=${VG_KIGO_GAMES}/Honinbo-51-5.sgf gnugo:=${VG_GNUGO}
-  DEPENDENCIES sgf_replay)
+# Paths reach the test through a file in the devel space (found with catkin's
+# find_in_workspaces), never as rostest arguments: catkin names a rostest's targets after its
+# arguments, so a path there would grow the names with the checkout path (issue 18).
+file(WRITE ${CATKIN_DEVEL_PREFIX}/share/${PROJECT_NAME}/test_data_paths.txt
+  "game ${VG_KIGO_GAMES}/Honinbo-51-5.sgf\ngnugo ${VG_GNUGO}\n")
+add_rostest(test/replay/sgf_replay.test DEPENDENCIES sgf_replay)

@@ -9,7 +9,8 @@ removes naming stones the place calls created and not yet removed); the board le
 Go's `list_stones` for the same record (the whole game, and --to-move); a malformed record calls
 nothing and names the line; missing services are named; a refused call stops the replay.
 
-Arguments: the game record (Debian kigo's Honinbo-51-5.sgf) and the gnugo executable."""
+The game record (Debian kigo's Honinbo-51-5.sgf) and the gnugo executable are named in
+test_data_paths.txt, which test/replay_tests.cmake writes into the devel space."""
 import os
 import subprocess
 import sys
@@ -180,6 +181,16 @@ class SgfReplayTest(unittest.TestCase):
 
 if __name__ == "__main__":
     rospy.init_node("test_sgf_replay")
-    args = rospy.myargv(sys.argv)
-    GAME, GNUGO = args[1], args[2]
+    from catkin.find_in_workspaces import find_in_workspaces
+    found = find_in_workspaces(search_dirs=["share"], project=PKG, path="test_data_paths.txt",
+                               first_match_only=True)
+    if not found:
+        sys.exit("test_sgf_replay: test_data_paths.txt not found in the devel space "
+                 "(configure with tests enabled)")
+    with open(found[0]) as f:
+        paths = dict(line.split(" ", 1) for line in f.read().splitlines() if line)
+    GAME, GNUGO = paths["game"], paths["gnugo"]
+    if not os.path.isfile(GAME):
+        sys.exit("test_sgf_replay: the game record %s is missing (scripts/setup.sh fetches it "
+                 "from Debian's kigo package)" % GAME)
     rostest.rosrun(PKG, "sgf_replay", SgfReplayTest, sys.argv)
