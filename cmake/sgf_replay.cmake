@@ -9,9 +9,8 @@ target_link_libraries(virtual_go_replay PUBLIC virtual_go_core)
 add_executable(sgf_replay
   src/apps/sgf_replay_main.cpp
   src/replay/ros_board_services.cpp)
-# The generated virtual_go/PlaceStone.h and RemoveStone.h.
-target_include_directories(sgf_replay PRIVATE ${catkin_INCLUDE_DIRS}
-  ${CATKIN_DEVEL_PREFIX}/${CATKIN_GLOBAL_INCLUDE_DESTINATION})
+# ROS's headers and the generated virtual_go/PlaceStone.h come from the folder-wide
+# include_directories of cmake/node.cmake (as for bag_report).
 target_link_libraries(sgf_replay virtual_go_replay ${catkin_LIBRARIES})
 add_dependencies(sgf_replay ${${PROJECT_NAME}_EXPORTED_TARGETS} ${catkin_EXPORTED_TARGETS})
 

@@ -13,19 +13,21 @@ set(VG_GNUGO_GAMES ${CMAKE_BINARY_DIR}/test_data/gnugo)
 
 # The self-play generator talks GTP itself and links nothing of the package, so a change in the
 # core does not make the games again.
-add_executable(gnugo_selfplay EXCLUDE_FROM_ALL
+# A tool of the tests' set-up, never installed ("test" in its name tells catkin_lint so).
+add_executable(gnugo_selfplay_testdata EXCLUDE_FROM_ALL
   test/support/gnugo_selfplay_main.cpp test/support/gtp_engine.cpp)
 set(gnugo_games)
 foreach(seed 1 2)
   set(game ${VG_GNUGO_GAMES}/selfplay_seed${seed}.sgf)
   add_custom_command(OUTPUT ${game}
     COMMAND ${CMAKE_COMMAND} -E make_directory ${VG_GNUGO_GAMES}
-    COMMAND gnugo_selfplay ${VG_GNUGO} ${seed} ${game}
-    DEPENDS gnugo_selfplay
+    COMMAND gnugo_selfplay_testdata ${VG_GNUGO} ${seed} ${game}
+    DEPENDS gnugo_selfplay_testdata
     COMMENT "GNU Go self-play game, seed ${seed} (a minute or two)")
   list(APPEND gnugo_games ${game})
 endforeach()
 add_custom_target(gnugo_selfplay_games DEPENDS ${gnugo_games})
+
 
 catkin_add_gtest(test_gnugo_replay test/go/test_gnugo_replay.cpp test/support/gtp_engine.cpp)
 target_link_libraries(test_gnugo_replay virtual_go_core GTest::gtest_main)
