@@ -1,8 +1,10 @@
 #include "virtual_go/contact/plane_contact_dynamics.h"
 
-#include <Eigen/LU>
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
+#include "virtual_go/body/rigid_body.h"
 #include "virtual_go/contact/lens_on_plane.h"
 
 namespace virtual_go {
@@ -10,12 +12,61 @@ namespace {
 
 using Vector3 = Eigen::Vector3d;
 
-Eigen::Matrix3d inverse_inertia_world(const MotionModel& model, const Eigen::Matrix3d& rotation) {
+// The world inertia and its inverse at the orientation whose symmetry axis is b. An
+// axisymmetric body (I1 = I2, or constant omega) needs only b: I_w = I1 1 + (I3 - I1) b b^T.
+void world_inertia(const MotionModel& model, const Eigen::Quaterniond& orientation,
+                   const Vector3& axis, Eigen::Matrix3d& inertia, Eigen::Matrix3d& inverse) {
   if (model.kind() == MotionModelKind::constant_omega) {
-    return Eigen::Matrix3d::Identity() / model.isotropic_moment();
+    inertia = model.isotropic_moment() * Eigen::Matrix3d::Identity();
+    inverse = Eigen::Matrix3d::Identity() / model.isotropic_moment();
+    return;
   }
-  const Vector3 inverse_moments = model.mass_properties().principal_moments_body().cwiseInverse();
-  return rotation * inverse_moments.asDiagonal() * rotation.transpose();
+  const Vector3& moments = model.mass_properties().principal_moments_body();
+  if (moments.x() == moments.y()) {
+    const Eigen::Matrix3d bb = axis * axis.transpose();
+    inertia = moments.x() * Eigen::Matrix3d::Identity() + (moments.z() - moments.x()) * bb;
+    inverse =
+        Eigen::Matrix3d::Identity() / moments.x() + (1.0 / moments.z() - 1.0 / moments.x()) * bb;
+    return;
+  }
+  const Eigen::Matrix3d rotation = orientation.toRotationMatrix();
+  inertia = rotation * moments.asDiagonal() * rotation.transpose();
+  inverse = rotation * moments.cwiseInverse().asDiagonal() * rotation.transpose();
+}
+
+// Solves a x = b for the leading n x n block (n <= 6) by Gaussian elimination with partial
+// pivoting (a few dozen operations; Eigen's decompositions of a dynamic-size block cost several
+// times the whole right-hand side here). False when a pivot falls below n eps max |a_ij|:
+// singular to working precision, the same test as Eigen's FullPivLU::isInvertible.
+bool solve_small(Eigen::Matrix<double, 6, 6>& a, Eigen::Matrix<double, 6, 1>& b, int n) {
+  double largest = 0.0;
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) largest = std::max(largest, std::abs(a(i, j)));
+  }
+  const double threshold = n * std::numeric_limits<double>::epsilon() * largest;
+  if (!(largest > 0.0) || !std::isfinite(largest)) return false;
+  for (int col = 0; col < n; ++col) {
+    int pivot = col;
+    for (int i = col + 1; i < n; ++i) {
+      if (std::abs(a(i, col)) > std::abs(a(pivot, col))) pivot = i;
+    }
+    if (!(std::abs(a(pivot, col)) > threshold)) return false;
+    if (pivot != col) {
+      a.row(pivot).swap(a.row(col));
+      std::swap(b(pivot), b(col));
+    }
+    for (int i = col + 1; i < n; ++i) {
+      const double factor = a(i, col) / a(col, col);
+      for (int j = col + 1; j < n; ++j) a(i, j) -= factor * a(col, j);
+      b(i) -= factor * b(col);
+    }
+  }
+  for (int i = n - 1; i >= 0; --i) {
+    double sum = b(i);
+    for (int j = i + 1; j < n; ++j) sum -= a(i, j) * b(j);
+    b(i) = sum / a(i, i);
+  }
+  return true;
 }
 
 // One constraint row: the acceleration of a velocity the mode holds at zero (the normal velocity
@@ -57,8 +108,11 @@ PlaneContactKinematics plane_contact_kinematics(const PlaneContactSetup& setup,
                                                 const Eigen::Vector3d& angular_velocity_world) {
   PlaneContactKinematics k;
   k.orientation = orientation.normalized();
-  const Eigen::Matrix3d rotation = k.orientation.toRotationMatrix();
-  k.axis_world = rotation.col(2);
+  const Eigen::Quaterniond& q = k.orientation;
+  // b = R(q) e_z without the whole rotation matrix.
+  k.axis_world =
+      Vector3(2.0 * (q.x() * q.z() + q.w() * q.y()), 2.0 * (q.y() * q.z() - q.w() * q.x()),
+              1.0 - 2.0 * (q.x() * q.x() + q.y() * q.y()));
   k.angular_velocity_world = angular_velocity_world;
   if (mode.rolling.law == ContactLaw::stuck) {
     k.angular_velocity_world.x() = 0.0;
@@ -78,8 +132,7 @@ PlaneContactKinematics plane_contact_kinematics(const PlaneContactSetup& setup,
     k.velocity_world =
         Vector3(velocity_xy_world.x(), velocity_xy_world.y(), -spin_velocity_at_p.z());
   }
-  k.inertia_world = setup.model.inertia_world(k.orientation);
-  k.inverse_inertia_world = inverse_inertia_world(setup.model, rotation);
+  world_inertia(setup.model, k.orientation, k.axis_world, k.inertia_world, k.inverse_inertia_world);
   return k;
 }
 
@@ -141,22 +194,20 @@ PlaneContactForces solve_plane_contact(const PlaneContactSetup& setup, const Pla
     columns[n++] = {Vector3::Zero(), ez};
   }
 
-  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 6, 6> a(n, n);
-  Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1> rhs(n);
+  Eigen::Matrix<double, 6, 6> a;
+  Eigen::Matrix<double, 6, 1> lambda;
   Vector3 column_a[6], column_alpha[6];
   for (int j = 0; j < n; ++j) {
     column_a[j] = columns[j].force / m;
     column_alpha[j] = k.inverse_inertia_world * columns[j].torque;
   }
   for (int i = 0; i < n; ++i) {
-    rhs(i) = -rows[i].apply(a_free, alpha_free, r) - rows[i].bias;
+    lambda(i) = -rows[i].apply(a_free, alpha_free, r) - rows[i].bias;
     for (int j = 0; j < n; ++j) a(i, j) = rows[i].apply(column_a[j], column_alpha[j], r);
   }
   PlaneContactForces f;
-  const Eigen::FullPivLU<decltype(a)> lu(a);
-  if (!lu.isInvertible()) return f;
-  const auto lambda = lu.solve(rhs).eval();
-  if (!lambda.allFinite()) return f;
+  if (!solve_small(a, lambda, n)) return f;
+  if (!lambda.head(n).allFinite()) return f;
   f.solved = true;
 
   f.linear_acceleration_world = a_free;
@@ -192,10 +243,9 @@ PlaneContactForces solve_plane_contact(const PlaneContactSetup& setup, const Pla
 }
 
 double plane_contact_energy(const PlaneContactSetup& setup, const PlaneContactKinematics& k) {
-  const double m = setup.model.mass_properties().mass();
-  const Vector3& w = k.angular_velocity_world;
-  return 0.5 * m * k.velocity_world.squaredNorm() + 0.5 * w.dot(k.inertia_world * w) -
-         m * setup.gravity_world.dot(k.position_world);
+  return body_energy(setup.model.mass_properties().mass(), k.position_world, k.velocity_world,
+                     k.angular_velocity_world, k.inertia_world * k.angular_velocity_world,
+                     setup.gravity_world);
 }
 
 }  // namespace virtual_go
