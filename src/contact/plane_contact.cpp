@@ -194,6 +194,22 @@ std::optional<PlaneContactOutcome> PlaneContact::Impl::process(const PendingEven
       return finish(PlaneContactEvent::left_region, before);
     case Trigger::clearance:
       return finish(PlaneContactEvent::obstacle, before);
+    case Trigger::tangential_layer:
+    case Trigger::rolling_layer: {
+      // The motion crossed the edge of its direction layer: the same mode goes on with the law
+      // of the other side (not reported).
+      ModeChoice same;
+      same.mode = old_mode;
+      ContactLawPart& p =
+          event.trigger == Trigger::tangential_layer ? same.mode.tangential : same.mode.rolling;
+      p.layer = p.layer == ContactLawPart::Layer::inside ? ContactLawPart::Layer::outside
+                                                         : ContactLawPart::Layer::inside;
+      same.kinematics = before.kinematics;
+      while (!segments_.empty() && segments_.back().t_begin > t) segments_.pop_back();
+      pending_.reset();
+      start_mode(same, t, cap);
+      return std::nullopt;
+    }
     case Trigger::part_switch:
       if (old_mode.part == LensPart::rim) {
         part = before.kinematics.axis_world.z() > 0.0 ? LensPart::bottom_cap : LensPart::top_cap;

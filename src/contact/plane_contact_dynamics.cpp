@@ -69,29 +69,24 @@ bool solve_small(Eigen::Matrix<double, 6, 6>& a, Eigen::Matrix<double, 6, 1>& b,
   return true;
 }
 
-// One constraint row: the acceleration of a velocity the mode holds at zero (the normal velocity
-// at P, a stuck slip component, a stuck angular component), affine in the multipliers.
-struct Row {
-  bool translational;  // direction . (a + alpha x r) + bias, else direction . alpha
-  Vector3 direction;
-  double bias;  // direction . (omega x dr/dt) for translational rows, else 0
-  // The row's acceleration without the bias.
-  double apply(const Vector3& a, const Vector3& alpha, const Vector3& r) const {
-    return translational ? direction.dot(a + alpha.cross(r)) : direction.dot(alpha);
-  }
-};
-
-// The generalized force of a unit multiplier: a force at P (and its torque) plus a couple.
-struct Column {
-  Vector3 force;
-  Vector3 torque;
-};
-
 }  // namespace
 
 Vector3 PlaneContactKinematics::slip_velocity() const {
   const Vector3 u = velocity_world + angular_velocity_world.cross(offset_world);
   return {u.x(), u.y(), 0.0};
+}
+
+// The direction the sliding law of `part` opposes (see ContactLawPart::layer).
+static Vector3 law_direction(const ContactLawPart& part, const Vector3& velocity, double layer_speed) {
+  switch (part.layer) {
+    case ContactLawPart::Layer::inside:
+      return part.reference_world;
+    case ContactLawPart::Layer::outside:
+      return sliding_direction(velocity, part.reference_world, 0.0);
+    case ContactLawPart::Layer::by_speed:
+    default:
+      return sliding_direction(velocity, part.reference_world, layer_speed);
+  }
 }
 
 Vector3 sliding_direction(const Vector3& velocity, const Vector3& reference, double layer_speed) {
@@ -142,103 +137,120 @@ PlaneContactForces solve_plane_contact(const PlaneContactSetup& setup, const Pla
   const ContactMaterial& law = setup.material;
   const Vector3& r = k.offset_world;
   const Vector3& w = k.angular_velocity_world;
-  const Vector3 ex = Vector3::UnitX(), ey = Vector3::UnitY(), ez = Vector3::UnitZ();
+  const Eigen::Matrix3d& inverse_inertia = k.inverse_inertia_world;
+  const Vector3 ez = Vector3::UnitZ();
   const Vector3 w_cross_r_dot = w.cross(k.offset_rate_world);
 
-  // Accelerations without contact: gravity and the gyroscopic term.
-  const Vector3 a_free = setup.gravity_world;
-  const Vector3 alpha_free = -k.inverse_inertia_world * w.cross(k.inertia_world * w);
+  // Every unknown multiplier is a generalized force: a force at P and a couple. Its response is
+  // the acceleration of G, the angular acceleration, and the acceleration of the material point at
+  // P, p = a + alpha x r. Every constraint row is one component of p (the normal velocity at P,
+  // stuck slip) or of alpha (stuck rolling and spinning), so the matrix is read off the responses.
+  struct Response {
+    Vector3 a, alpha, p;
+  };
+  auto respond = [&](const Vector3& force, const Vector3& couple) {
+    Response c;
+    c.a = force / m;
+    c.alpha = inverse_inertia * (r.cross(force) + couple);
+    c.p = c.a + c.alpha.cross(r);
+    return c;
+  };
+  // Without contact: gravity and the gyroscopic term; p also carries omega x dr/dt.
+  Response free;
+  free.a = setup.gravity_world;
+  free.alpha = -inverse_inertia * w.cross(k.inertia_world * w);
+  free.p = free.a + free.alpha.cross(r) + w_cross_r_dot;
 
   // The normal force's column carries the sliding parts, which are proportional to N.
   Vector3 tangential_direction = Vector3::Zero(), rolling_direction = Vector3::Zero();
   double spin_sign = 0.0;
-  Column normal{ez, Vector3::Zero()};
+  Vector3 normal_force = ez, normal_couple = Vector3::Zero();
   if (mode.tangential.law == ContactLaw::sliding) {
-    tangential_direction =
-        sliding_direction(k.slip_velocity(), mode.tangential.reference_world, kSlipDirectionLayer);
-    normal.force -= law.friction * tangential_direction;
+    tangential_direction = law_direction(mode.tangential, k.slip_velocity(), kSlipDirectionLayer);
+    normal_force -= law.friction * tangential_direction;
   }
-  normal.torque = r.cross(normal.force);
   if (mode.rolling.law == ContactLaw::sliding) {
-    rolling_direction =
-        sliding_direction(k.rolling_velocity(), mode.rolling.reference_world, kRollDirectionLayer);
-    normal.torque -= law.rolling_resistance_m * rolling_direction;
+    rolling_direction = law_direction(mode.rolling, k.rolling_velocity(), kRollDirectionLayer);
+    normal_couple -= law.rolling_resistance_m * rolling_direction;
   }
   if (mode.spinning.law == ContactLaw::sliding) {
     spin_sign = mode.spinning.reference_world.z() < 0.0 ? -1.0 : 1.0;
-    normal.torque -= law.spinning_friction_m * spin_sign * ez;
+    normal_couple.z() -= law.spinning_friction_m * spin_sign;
   }
 
+  // Rows (component `axis` of p, or of alpha when `angular`) and their columns.
+  struct Row {
+    bool angular;
+    int axis;
+  };
   Row rows[6];
-  Column columns[6];
+  Response columns[6];
   int n = 0;
-  rows[n] = {true, ez, ez.dot(w_cross_r_dot)};
-  columns[n++] = normal;
+  rows[n] = {false, 2};
+  columns[n++] = respond(normal_force, normal_couple);
   const bool tangential_stuck = mode.tangential.law == ContactLaw::stuck;
   const bool rolling_stuck = mode.rolling.law == ContactLaw::stuck;
   const bool spinning_stuck = mode.spinning.law == ContactLaw::stuck;
   if (tangential_stuck) {
-    for (const Vector3& e : {ex, ey}) {
-      rows[n] = {true, e, e.dot(w_cross_r_dot)};
-      columns[n++] = {e, r.cross(e)};
+    for (int axis = 0; axis < 2; ++axis) {
+      rows[n] = {false, axis};
+      columns[n++] = respond(Vector3::Unit(axis), Vector3::Zero());
     }
   }
   if (rolling_stuck) {
-    for (const Vector3& e : {ex, ey}) {
-      rows[n] = {false, e, 0.0};
-      columns[n++] = {Vector3::Zero(), e};
+    for (int axis = 0; axis < 2; ++axis) {
+      rows[n] = {true, axis};
+      columns[n++] = respond(Vector3::Zero(), Vector3::Unit(axis));
     }
   }
   if (spinning_stuck) {
-    rows[n] = {false, ez, 0.0};
-    columns[n++] = {Vector3::Zero(), ez};
+    rows[n] = {true, 2};
+    columns[n++] = respond(Vector3::Zero(), ez);
   }
-
+  auto component = [](const Row& row, const Response& c) {
+    return row.angular ? c.alpha[row.axis] : c.p[row.axis];
+  };
   Eigen::Matrix<double, 6, 6> a;
   Eigen::Matrix<double, 6, 1> lambda;
-  Vector3 column_a[6], column_alpha[6];
-  for (int j = 0; j < n; ++j) {
-    column_a[j] = columns[j].force / m;
-    column_alpha[j] = k.inverse_inertia_world * columns[j].torque;
-  }
   for (int i = 0; i < n; ++i) {
-    lambda(i) = -rows[i].apply(a_free, alpha_free, r) - rows[i].bias;
-    for (int j = 0; j < n; ++j) a(i, j) = rows[i].apply(column_a[j], column_alpha[j], r);
+    lambda(i) = -component(rows[i], free);
+    for (int j = 0; j < n; ++j) a(i, j) = component(rows[i], columns[j]);
   }
   PlaneContactForces f;
   if (!solve_small(a, lambda, n)) return f;
   if (!lambda.head(n).allFinite()) return f;
   f.solved = true;
 
-  f.linear_acceleration_world = a_free;
-  f.angular_acceleration_world = alpha_free;
+  Vector3 p = free.p;
+  f.linear_acceleration_world = free.a;
+  f.angular_acceleration_world = free.alpha;
   for (int j = 0; j < n; ++j) {
-    f.linear_acceleration_world += lambda(j) * column_a[j];
-    f.angular_acceleration_world += lambda(j) * column_alpha[j];
+    f.linear_acceleration_world += lambda(j) * columns[j].a;
+    f.angular_acceleration_world += lambda(j) * columns[j].alpha;
+    p += lambda(j) * columns[j].p;
   }
-  const double normal_force = lambda(0);
-  f.normal_force_n = normal_force;
+  const double normal = lambda(0);
+  f.normal_force_n = normal;
   int next = 1;
   if (tangential_stuck) {
-    f.friction_force_world = lambda(next) * ex + lambda(next + 1) * ey;
+    f.friction_force_world = Vector3(lambda(next), lambda(next + 1), 0.0);
     next += 2;
   } else if (mode.tangential.law == ContactLaw::sliding) {
-    f.friction_force_world = -law.friction * normal_force * tangential_direction;
+    f.friction_force_world = -law.friction * normal * tangential_direction;
   }
   if (rolling_stuck) {
-    f.rolling_couple_world = lambda(next) * ex + lambda(next + 1) * ey;
+    f.rolling_couple_world = Vector3(lambda(next), lambda(next + 1), 0.0);
     next += 2;
   } else if (mode.rolling.law == ContactLaw::sliding) {
-    f.rolling_couple_world = -law.rolling_resistance_m * normal_force * rolling_direction;
+    f.rolling_couple_world = -law.rolling_resistance_m * normal * rolling_direction;
   }
   if (spinning_stuck) {
     f.spinning_couple_nm = lambda(next);
   } else if (mode.spinning.law == ContactLaw::sliding) {
-    f.spinning_couple_nm = -law.spinning_friction_m * normal_force * spin_sign;
+    f.spinning_couple_nm = -law.spinning_friction_m * normal * spin_sign;
   }
-  const Vector3 u_dot =
-      f.linear_acceleration_world + f.angular_acceleration_world.cross(r) + w_cross_r_dot;
-  f.slip_acceleration_world = Vector3(u_dot.x(), u_dot.y(), 0.0);
+  // d/dt of the slip velocity: the material point's acceleration, horizontal.
+  f.slip_acceleration_world = Vector3(p.x(), p.y(), 0.0);
   return f;
 }
 

@@ -5,6 +5,14 @@
 #include "plane_contact_laws.h"
 
 namespace virtual_go::plane_contact_detail {
+namespace {
+
+// Positive while the speed stays on the part's side of its direction layer's edge.
+double layer_margin(const ContactLawPart& part, double speed, double layer_speed) {
+  return part.layer == ContactLawPart::Layer::inside ? layer_speed - speed : speed - layer_speed;
+}
+
+}  // namespace
 
 double PlaneContactLaws::event_value(Trigger trigger, const PlaneContactKinematics& k,
                                      const PlaneContactMode& mode,
@@ -32,6 +40,10 @@ double PlaneContactLaws::event_value(Trigger trigger, const PlaneContactKinemati
       return k.rolling_velocity().dot(mode.rolling.reference_world);
     case Trigger::spinning_zero:
       return k.spin_velocity() * mode.spinning.reference_world.z();
+    case Trigger::tangential_layer:
+      return layer_margin(mode.tangential, k.slip_velocity().norm(), kSlipDirectionLayer);
+    case Trigger::rolling_layer:
+      return layer_margin(mode.rolling, k.rolling_velocity().norm(), kRollDirectionLayer);
     default:
       break;
   }
@@ -68,6 +80,11 @@ EventValues PlaneContactLaws::event_values(const PlaneContactKinematics& k,
     if (law == ContactLaw::sliding) activate(triggers.first);
     if (law == ContactLaw::stuck) activate(triggers.second);
   }
+  auto layered = [](const ContactLawPart& p) {
+    return p.law == ContactLaw::sliding && p.layer != ContactLawPart::Layer::by_speed;
+  };
+  if (layered(mode.tangential)) activate(Trigger::tangential_layer);
+  if (layered(mode.rolling)) activate(Trigger::rolling_layer);
   PlaneContactForces solved;
   if (!forces) {
     ++counters_.extra_solves;

@@ -53,8 +53,10 @@ enum class Trigger {
   spinning_zero,
   spinning_bound,
   clearance,
+  tangential_layer,  // the slip speed crosses the edge of its direction layer (not reported)
+  rolling_layer,     // the rolling speed does
 };
-constexpr int kTriggerCount = 10;
+constexpr int kTriggerCount = 12;
 
 struct EventValues {
   std::array<double, kTriggerCount> g{};

@@ -79,12 +79,18 @@ void PlaneContact::Impl::refresh_references() {
   // Outside the direction layer the reference is the motion's direction; inside it, a part whose
   // direction has a stable zero near the reference is slaved to it for this step (the decision
   // is taken here, once per step, so that the law stays smooth within the step).
+  // The side of the layer is taken by speed when the mode begins and changes only at the layer's
+  // edge (an event), so a step never straddles it.
   auto refresh = [&](bool tangential, const Vector3& velocity, double layer) {
     ContactLawPart& part = tangential ? mode_.tangential : mode_.rolling;
     part.slaved = false;
     if (part.law != ContactLaw::sliding) return;
-    if (velocity.norm() > layer) {
-      part.reference_world = velocity.normalized();
+    if (part.layer == ContactLawPart::Layer::by_speed) {
+      part.layer = velocity.norm() > layer ? ContactLawPart::Layer::outside
+                                           : ContactLawPart::Layer::inside;
+    }
+    if (part.layer == ContactLawPart::Layer::outside) {
+      if (velocity.norm() > 0.0) part.reference_world = velocity.normalized();
       return;
     }
     Vector3 direction;
@@ -106,6 +112,19 @@ void PlaneContact::Impl::refresh_references() {
   restart(Trigger::tangential_zero, k.slip_velocity().dot(mode_.tangential.reference_world));
   restart(Trigger::rolling_zero, k.rolling_velocity().dot(mode_.rolling.reference_world));
   restart(Trigger::spinning_zero, k.spin_velocity() * mode_.spinning.reference_world.z());
+  // A mode that just began has its sides now.
+  const auto layered = [](const ContactLawPart& p) {
+    return p.law == ContactLaw::sliding && p.layer != ContactLawPart::Layer::by_speed;
+  };
+  auto start_layer = [&](Trigger t, bool active) {
+    const int i = static_cast<int>(t);
+    if (active && !g_start_.active[i]) {
+      g_start_.active[i] = true;
+      g_start_.g[i] = laws_.event_value(t, k, mode_);
+    }
+  };
+  start_layer(Trigger::tangential_layer, layered(mode_.tangential));
+  start_layer(Trigger::rolling_layer, layered(mode_.rolling));
 }
 
 void PlaneContact::Impl::take_step() {
