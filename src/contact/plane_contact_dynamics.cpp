@@ -77,7 +77,8 @@ Vector3 PlaneContactKinematics::slip_velocity() const {
 }
 
 // The direction the sliding law of `part` opposes (see ContactLawPart::layer).
-static Vector3 law_direction(const ContactLawPart& part, const Vector3& velocity, double layer_speed) {
+static Vector3 law_direction(const ContactLawPart& part, const Vector3& velocity,
+                             double layer_speed) {
   switch (part.layer) {
     case ContactLawPart::Layer::inside:
       return part.reference_world;

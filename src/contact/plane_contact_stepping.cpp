@@ -86,8 +86,8 @@ void PlaneContact::Impl::refresh_references() {
     part.slaved = false;
     if (part.law != ContactLaw::sliding) return;
     if (part.layer == ContactLawPart::Layer::by_speed) {
-      part.layer = velocity.norm() > layer ? ContactLawPart::Layer::outside
-                                           : ContactLawPart::Layer::inside;
+      part.layer =
+          velocity.norm() > layer ? ContactLawPart::Layer::outside : ContactLawPart::Layer::inside;
     }
     if (part.layer == ContactLawPart::Layer::outside) {
       if (velocity.norm() > 0.0) part.reference_world = velocity.normalized();
