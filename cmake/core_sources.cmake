@@ -38,6 +38,11 @@ set(VG_CORE_SOURCES
   src/contact/lens_on_plane.cpp
   src/contact/plane_contact_dynamics.cpp
   src/contact/plane_contact.cpp
+  src/contact/plane_contact_motion.cpp
+  src/contact/plane_contact_energy_guard.cpp
+  src/contact/plane_contact_events.cpp
+  src/contact/plane_contact_modes.cpp
+  src/contact/plane_contact_stepping.cpp
   src/world/stone_mode.cpp
   src/world/world_event.cpp
   src/world/support_plane.cpp

@@ -32,6 +32,7 @@ foreach(core_test
     contact/test_impact
     contact/test_plane_region
     contact/test_lens_on_plane
+    contact/test_dop853
     contact/test_plane_contact_dynamics
     contact/test_plane_contact
     world/test_world_event

@@ -138,7 +138,7 @@ class OursContact : public ContactMethod {
         {"plane contact: rel. / abs. tolerance, max step (s)",
          num(o.plane_contact.relative_tolerance) + " / " + num(o.plane_contact.absolute_tolerance) +
              ", " + num(o.plane_contact.max_step_s),
-         phys + "\"Sustained contact\" (Dormand-Prince 5(4), Boost.Odeint)"},
+         phys + "\"Sustained contact\" (Dormand-Prince 8(5,3), dop853.h)"},
         {"fallback: sub-step (s), rest speed (m/s) for (s)",
          num(o.nonsmooth.step_s) + ", " + num(o.nonsmooth.rest_speed_m_s) + " for " +
              num(o.nonsmooth.rest_time_s),

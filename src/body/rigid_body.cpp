@@ -64,7 +64,24 @@ double RigidBody::potential_energy(const Eigen::Vector3d& gravity_world) const {
 }
 
 double RigidBody::total_energy(const Eigen::Vector3d& gravity_world) const {
-  return kinetic_energy() + potential_energy(gravity_world);
+  return body_energy(model_, state_, gravity_world);
+}
+
+double body_energy(double mass_kg, const Eigen::Vector3d& position_world,
+                   const Eigen::Vector3d& velocity_world,
+                   const Eigen::Vector3d& angular_velocity_world,
+                   const Eigen::Vector3d& angular_momentum_world,
+                   const Eigen::Vector3d& gravity_world) {
+  return 0.5 * mass_kg * velocity_world.squaredNorm() +
+         0.5 * angular_velocity_world.dot(angular_momentum_world) -
+         mass_kg * gravity_world.dot(position_world);
+}
+
+double body_energy(const MotionModel& model, const RigidBodyState& state,
+                   const Eigen::Vector3d& gravity_world) {
+  return body_energy(model.mass_properties().mass(), state.position_world, state.velocity_world,
+                     model.angular_velocity_world(state.orientation, state.angular_momentum_world),
+                     state.angular_momentum_world, gravity_world);
 }
 
 RigidBodyState with_angular_velocity_world(const MotionModel& model, RigidBodyState state,

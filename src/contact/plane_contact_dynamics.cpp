@@ -1,8 +1,10 @@
 #include "virtual_go/contact/plane_contact_dynamics.h"
 
-#include <Eigen/LU>
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
+#include "virtual_go/body/rigid_body.h"
 #include "virtual_go/contact/lens_on_plane.h"
 
 namespace virtual_go {
@@ -10,37 +12,82 @@ namespace {
 
 using Vector3 = Eigen::Vector3d;
 
-Eigen::Matrix3d inverse_inertia_world(const MotionModel& model, const Eigen::Matrix3d& rotation) {
+// The world inertia and its inverse at the orientation whose symmetry axis is b. An
+// axisymmetric body (I1 = I2, or constant omega) needs only b: I_w = I1 1 + (I3 - I1) b b^T.
+void world_inertia(const MotionModel& model, const Eigen::Quaterniond& orientation,
+                   const Vector3& axis, Eigen::Matrix3d& inertia, Eigen::Matrix3d& inverse) {
   if (model.kind() == MotionModelKind::constant_omega) {
-    return Eigen::Matrix3d::Identity() / model.isotropic_moment();
+    inertia = model.isotropic_moment() * Eigen::Matrix3d::Identity();
+    inverse = Eigen::Matrix3d::Identity() / model.isotropic_moment();
+    return;
   }
-  const Vector3 inverse_moments = model.mass_properties().principal_moments_body().cwiseInverse();
-  return rotation * inverse_moments.asDiagonal() * rotation.transpose();
+  const Vector3& moments = model.mass_properties().principal_moments_body();
+  if (moments.x() == moments.y()) {
+    const Eigen::Matrix3d bb = axis * axis.transpose();
+    inertia = moments.x() * Eigen::Matrix3d::Identity() + (moments.z() - moments.x()) * bb;
+    inverse =
+        Eigen::Matrix3d::Identity() / moments.x() + (1.0 / moments.z() - 1.0 / moments.x()) * bb;
+    return;
+  }
+  const Eigen::Matrix3d rotation = orientation.toRotationMatrix();
+  inertia = rotation * moments.asDiagonal() * rotation.transpose();
+  inverse = rotation * moments.cwiseInverse().asDiagonal() * rotation.transpose();
 }
 
-// One constraint row: the acceleration of a velocity the mode holds at zero (the normal velocity
-// at P, a stuck slip component, a stuck angular component), affine in the multipliers.
-struct Row {
-  bool translational;  // direction . (a + alpha x r) + bias, else direction . alpha
-  Vector3 direction;
-  double bias;  // direction . (omega x dr/dt) for translational rows, else 0
-  // The row's acceleration without the bias.
-  double apply(const Vector3& a, const Vector3& alpha, const Vector3& r) const {
-    return translational ? direction.dot(a + alpha.cross(r)) : direction.dot(alpha);
+// Solves a x = b for the leading n x n block (n <= 6) by Gaussian elimination with partial
+// pivoting (a few dozen operations; Eigen's decompositions of a dynamic-size block cost several
+// times the whole right-hand side here). False when a pivot falls below n eps max |a_ij|:
+// singular to working precision, the same test as Eigen's FullPivLU::isInvertible.
+bool solve_small(Eigen::Matrix<double, 6, 6>& a, Eigen::Matrix<double, 6, 1>& b, int n) {
+  double largest = 0.0;
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) largest = std::max(largest, std::abs(a(i, j)));
   }
-};
-
-// The generalized force of a unit multiplier: a force at P (and its torque) plus a couple.
-struct Column {
-  Vector3 force;
-  Vector3 torque;
-};
+  const double threshold = n * std::numeric_limits<double>::epsilon() * largest;
+  if (!(largest > 0.0) || !std::isfinite(largest)) return false;
+  for (int col = 0; col < n; ++col) {
+    int pivot = col;
+    for (int i = col + 1; i < n; ++i) {
+      if (std::abs(a(i, col)) > std::abs(a(pivot, col))) pivot = i;
+    }
+    if (!(std::abs(a(pivot, col)) > threshold)) return false;
+    if (pivot != col) {
+      a.row(pivot).swap(a.row(col));
+      std::swap(b(pivot), b(col));
+    }
+    for (int i = col + 1; i < n; ++i) {
+      const double factor = a(i, col) / a(col, col);
+      for (int j = col + 1; j < n; ++j) a(i, j) -= factor * a(col, j);
+      b(i) -= factor * b(col);
+    }
+  }
+  for (int i = n - 1; i >= 0; --i) {
+    double sum = b(i);
+    for (int j = i + 1; j < n; ++j) sum -= a(i, j) * b(j);
+    b(i) = sum / a(i, i);
+  }
+  return true;
+}
 
 }  // namespace
 
 Vector3 PlaneContactKinematics::slip_velocity() const {
   const Vector3 u = velocity_world + angular_velocity_world.cross(offset_world);
   return {u.x(), u.y(), 0.0};
+}
+
+// The direction the sliding law of `part` opposes (see ContactLawPart::layer).
+static Vector3 law_direction(const ContactLawPart& part, const Vector3& velocity,
+                             double layer_speed) {
+  switch (part.layer) {
+    case ContactLawPart::Layer::inside:
+      return part.reference_world;
+    case ContactLawPart::Layer::outside:
+      return sliding_direction(velocity, part.reference_world, 0.0);
+    case ContactLawPart::Layer::by_speed:
+    default:
+      return sliding_direction(velocity, part.reference_world, layer_speed);
+  }
 }
 
 Vector3 sliding_direction(const Vector3& velocity, const Vector3& reference, double layer_speed) {
@@ -57,8 +104,11 @@ PlaneContactKinematics plane_contact_kinematics(const PlaneContactSetup& setup,
                                                 const Eigen::Vector3d& angular_velocity_world) {
   PlaneContactKinematics k;
   k.orientation = orientation.normalized();
-  const Eigen::Matrix3d rotation = k.orientation.toRotationMatrix();
-  k.axis_world = rotation.col(2);
+  const Eigen::Quaterniond& q = k.orientation;
+  // b = R(q) e_z without the whole rotation matrix.
+  k.axis_world =
+      Vector3(2.0 * (q.x() * q.z() + q.w() * q.y()), 2.0 * (q.y() * q.z() - q.w() * q.x()),
+              1.0 - 2.0 * (q.x() * q.x() + q.y() * q.y()));
   k.angular_velocity_world = angular_velocity_world;
   if (mode.rolling.law == ContactLaw::stuck) {
     k.angular_velocity_world.x() = 0.0;
@@ -78,8 +128,7 @@ PlaneContactKinematics plane_contact_kinematics(const PlaneContactSetup& setup,
     k.velocity_world =
         Vector3(velocity_xy_world.x(), velocity_xy_world.y(), -spin_velocity_at_p.z());
   }
-  k.inertia_world = setup.model.inertia_world(k.orientation);
-  k.inverse_inertia_world = inverse_inertia_world(setup.model, rotation);
+  world_inertia(setup.model, k.orientation, k.axis_world, k.inertia_world, k.inverse_inertia_world);
   return k;
 }
 
@@ -89,113 +138,127 @@ PlaneContactForces solve_plane_contact(const PlaneContactSetup& setup, const Pla
   const ContactMaterial& law = setup.material;
   const Vector3& r = k.offset_world;
   const Vector3& w = k.angular_velocity_world;
-  const Vector3 ex = Vector3::UnitX(), ey = Vector3::UnitY(), ez = Vector3::UnitZ();
+  const Eigen::Matrix3d& inverse_inertia = k.inverse_inertia_world;
+  const Vector3 ez = Vector3::UnitZ();
   const Vector3 w_cross_r_dot = w.cross(k.offset_rate_world);
 
-  // Accelerations without contact: gravity and the gyroscopic term.
-  const Vector3 a_free = setup.gravity_world;
-  const Vector3 alpha_free = -k.inverse_inertia_world * w.cross(k.inertia_world * w);
+  // Every unknown multiplier is a generalized force: a force at P and a couple. Its response is
+  // the acceleration of G, the angular acceleration, and the acceleration of the material point at
+  // P, p = a + alpha x r. Every constraint row is one component of p (the normal velocity at P,
+  // stuck slip) or of alpha (stuck rolling and spinning), so the matrix is read off the responses.
+  struct Response {
+    Vector3 a, alpha, p;
+  };
+  auto respond = [&](const Vector3& force, const Vector3& couple) {
+    Response c;
+    c.a = force / m;
+    c.alpha = inverse_inertia * (r.cross(force) + couple);
+    c.p = c.a + c.alpha.cross(r);
+    return c;
+  };
+  // Without contact: gravity and the gyroscopic term; p also carries omega x dr/dt.
+  Response free;
+  free.a = setup.gravity_world;
+  free.alpha = -inverse_inertia * w.cross(k.inertia_world * w);
+  free.p = free.a + free.alpha.cross(r) + w_cross_r_dot;
 
   // The normal force's column carries the sliding parts, which are proportional to N.
   Vector3 tangential_direction = Vector3::Zero(), rolling_direction = Vector3::Zero();
   double spin_sign = 0.0;
-  Column normal{ez, Vector3::Zero()};
+  Vector3 normal_force = ez, normal_couple = Vector3::Zero();
   if (mode.tangential.law == ContactLaw::sliding) {
-    tangential_direction =
-        sliding_direction(k.slip_velocity(), mode.tangential.reference_world, kSlipDirectionLayer);
-    normal.force -= law.friction * tangential_direction;
+    tangential_direction = law_direction(mode.tangential, k.slip_velocity(), kSlipDirectionLayer);
+    normal_force -= law.friction * tangential_direction;
   }
-  normal.torque = r.cross(normal.force);
   if (mode.rolling.law == ContactLaw::sliding) {
-    rolling_direction =
-        sliding_direction(k.rolling_velocity(), mode.rolling.reference_world, kRollDirectionLayer);
-    normal.torque -= law.rolling_resistance_m * rolling_direction;
+    rolling_direction = law_direction(mode.rolling, k.rolling_velocity(), kRollDirectionLayer);
+    normal_couple -= law.rolling_resistance_m * rolling_direction;
   }
   if (mode.spinning.law == ContactLaw::sliding) {
     spin_sign = mode.spinning.reference_world.z() < 0.0 ? -1.0 : 1.0;
-    normal.torque -= law.spinning_friction_m * spin_sign * ez;
+    normal_couple.z() -= law.spinning_friction_m * spin_sign;
   }
 
+  // Rows (component `axis` of p, or of alpha when `angular`) and their columns.
+  struct Row {
+    bool angular;
+    int axis;
+  };
   Row rows[6];
-  Column columns[6];
+  Response columns[6];
   int n = 0;
-  rows[n] = {true, ez, ez.dot(w_cross_r_dot)};
-  columns[n++] = normal;
+  rows[n] = {false, 2};
+  columns[n++] = respond(normal_force, normal_couple);
   const bool tangential_stuck = mode.tangential.law == ContactLaw::stuck;
   const bool rolling_stuck = mode.rolling.law == ContactLaw::stuck;
   const bool spinning_stuck = mode.spinning.law == ContactLaw::stuck;
   if (tangential_stuck) {
-    for (const Vector3& e : {ex, ey}) {
-      rows[n] = {true, e, e.dot(w_cross_r_dot)};
-      columns[n++] = {e, r.cross(e)};
+    for (int axis = 0; axis < 2; ++axis) {
+      rows[n] = {false, axis};
+      columns[n++] = respond(Vector3::Unit(axis), Vector3::Zero());
     }
   }
   if (rolling_stuck) {
-    for (const Vector3& e : {ex, ey}) {
-      rows[n] = {false, e, 0.0};
-      columns[n++] = {Vector3::Zero(), e};
+    for (int axis = 0; axis < 2; ++axis) {
+      rows[n] = {true, axis};
+      columns[n++] = respond(Vector3::Zero(), Vector3::Unit(axis));
     }
   }
   if (spinning_stuck) {
-    rows[n] = {false, ez, 0.0};
-    columns[n++] = {Vector3::Zero(), ez};
+    rows[n] = {true, 2};
+    columns[n++] = respond(Vector3::Zero(), ez);
   }
-
-  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 6, 6> a(n, n);
-  Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1> rhs(n);
-  Vector3 column_a[6], column_alpha[6];
-  for (int j = 0; j < n; ++j) {
-    column_a[j] = columns[j].force / m;
-    column_alpha[j] = k.inverse_inertia_world * columns[j].torque;
-  }
+  auto component = [](const Row& row, const Response& c) {
+    return row.angular ? c.alpha[row.axis] : c.p[row.axis];
+  };
+  Eigen::Matrix<double, 6, 6> a;
+  Eigen::Matrix<double, 6, 1> lambda;
   for (int i = 0; i < n; ++i) {
-    rhs(i) = -rows[i].apply(a_free, alpha_free, r) - rows[i].bias;
-    for (int j = 0; j < n; ++j) a(i, j) = rows[i].apply(column_a[j], column_alpha[j], r);
+    lambda(i) = -component(rows[i], free);
+    for (int j = 0; j < n; ++j) a(i, j) = component(rows[i], columns[j]);
   }
   PlaneContactForces f;
-  const Eigen::FullPivLU<decltype(a)> lu(a);
-  if (!lu.isInvertible()) return f;
-  const auto lambda = lu.solve(rhs).eval();
-  if (!lambda.allFinite()) return f;
+  if (!solve_small(a, lambda, n)) return f;
+  if (!lambda.head(n).allFinite()) return f;
   f.solved = true;
 
-  f.linear_acceleration_world = a_free;
-  f.angular_acceleration_world = alpha_free;
+  Vector3 p = free.p;
+  f.linear_acceleration_world = free.a;
+  f.angular_acceleration_world = free.alpha;
   for (int j = 0; j < n; ++j) {
-    f.linear_acceleration_world += lambda(j) * column_a[j];
-    f.angular_acceleration_world += lambda(j) * column_alpha[j];
+    f.linear_acceleration_world += lambda(j) * columns[j].a;
+    f.angular_acceleration_world += lambda(j) * columns[j].alpha;
+    p += lambda(j) * columns[j].p;
   }
-  const double normal_force = lambda(0);
-  f.normal_force_n = normal_force;
+  const double normal = lambda(0);
+  f.normal_force_n = normal;
   int next = 1;
   if (tangential_stuck) {
-    f.friction_force_world = lambda(next) * ex + lambda(next + 1) * ey;
+    f.friction_force_world = Vector3(lambda(next), lambda(next + 1), 0.0);
     next += 2;
   } else if (mode.tangential.law == ContactLaw::sliding) {
-    f.friction_force_world = -law.friction * normal_force * tangential_direction;
+    f.friction_force_world = -law.friction * normal * tangential_direction;
   }
   if (rolling_stuck) {
-    f.rolling_couple_world = lambda(next) * ex + lambda(next + 1) * ey;
+    f.rolling_couple_world = Vector3(lambda(next), lambda(next + 1), 0.0);
     next += 2;
   } else if (mode.rolling.law == ContactLaw::sliding) {
-    f.rolling_couple_world = -law.rolling_resistance_m * normal_force * rolling_direction;
+    f.rolling_couple_world = -law.rolling_resistance_m * normal * rolling_direction;
   }
   if (spinning_stuck) {
     f.spinning_couple_nm = lambda(next);
   } else if (mode.spinning.law == ContactLaw::sliding) {
-    f.spinning_couple_nm = -law.spinning_friction_m * normal_force * spin_sign;
+    f.spinning_couple_nm = -law.spinning_friction_m * normal * spin_sign;
   }
-  const Vector3 u_dot =
-      f.linear_acceleration_world + f.angular_acceleration_world.cross(r) + w_cross_r_dot;
-  f.slip_acceleration_world = Vector3(u_dot.x(), u_dot.y(), 0.0);
+  // d/dt of the slip velocity: the material point's acceleration, horizontal.
+  f.slip_acceleration_world = Vector3(p.x(), p.y(), 0.0);
   return f;
 }
 
 double plane_contact_energy(const PlaneContactSetup& setup, const PlaneContactKinematics& k) {
-  const double m = setup.model.mass_properties().mass();
-  const Vector3& w = k.angular_velocity_world;
-  return 0.5 * m * k.velocity_world.squaredNorm() + 0.5 * w.dot(k.inertia_world * w) -
-         m * setup.gravity_world.dot(k.position_world);
+  return body_energy(setup.model.mass_properties().mass(), k.position_world, k.velocity_world,
+                     k.angular_velocity_world, k.inertia_world * k.angular_velocity_world,
+                     setup.gravity_world);
 }
 
 }  // namespace virtual_go

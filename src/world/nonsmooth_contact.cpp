@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "virtual_go/body/rigid_body.h"
 #include "virtual_go/common/validation.h"
 #include "virtual_go/contact/impact.h"
 #include "virtual_go/contact/time_of_impact.h"
@@ -67,11 +68,7 @@ NonsmoothContact::NonsmoothContact(const BoardDistance& board, const MotionSetup
 }
 
 double NonsmoothContact::energy(const RigidBodyState& s) const {
-  const double m = setup_.model.mass_properties().mass();
-  const Eigen::Vector3d omega =
-      setup_.model.angular_velocity_world(s.orientation, s.angular_momentum_world);
-  return 0.5 * m * s.velocity_world.squaredNorm() + 0.5 * omega.dot(s.angular_momentum_world) -
-         m * setup_.gravity_world.dot(s.position_world);
+  return body_energy(setup_.model, s, setup_.gravity_world);
 }
 
 NonsmoothContact::SubStep NonsmoothContact::sub_step(const RigidBodyState& from, double h_s,

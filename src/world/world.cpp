@@ -5,6 +5,7 @@
 #include <string>
 #include <utility>
 
+#include "virtual_go/body/rigid_body.h"
 #include "virtual_go/common/validation.h"
 #include "virtual_go/contact/impact.h"
 #include "virtual_go/contact/time_of_impact.h"
@@ -98,13 +99,7 @@ double World::next_contact_time(std::size_t stone) const {
 }
 
 double World::energy(std::size_t stone) const {
-  const RigidBodyState& s = state(stone);
-  const MotionModel& model = config_.motion.model;
-  const double m = model.mass_properties().mass();
-  const Eigen::Vector3d omega =
-      model.angular_velocity_world(s.orientation, s.angular_momentum_world);
-  return 0.5 * m * s.velocity_world.squaredNorm() + 0.5 * omega.dot(s.angular_momentum_world) -
-         m * config_.motion.gravity_world.dot(s.position_world);
+  return body_energy(config_.motion.model, state(stone), config_.motion.gravity_world);
 }
 
 const ContactMaterial& World::material_of(const BoardFeature& feature) const {

@@ -42,6 +42,18 @@ class RigidBody {
   RigidBodyState state_;
 };
 
+// The energy of a body (J): kinetic 1/2 m v^2 + 1/2 omega . L plus the potential -m g . x (zero
+// at the world origin). The one formula: RigidBody, the World, both contact models and every
+// energy guard use it.
+double body_energy(double mass_kg, const Eigen::Vector3d& position_world,
+                   const Eigen::Vector3d& velocity_world,
+                   const Eigen::Vector3d& angular_velocity_world,
+                   const Eigen::Vector3d& angular_momentum_world,
+                   const Eigen::Vector3d& gravity_world);
+// The same for a state under its motion model.
+double body_energy(const MotionModel& model, const RigidBodyState& state,
+                   const Eigen::Vector3d& gravity_world);
+
 // Sets the angular momentum so that the body's world angular velocity is omega_world.
 RigidBodyState with_angular_velocity_world(const MotionModel& model, RigidBodyState state,
                                            const Eigen::Vector3d& omega_world);

@@ -7,8 +7,9 @@
 // or a stone placed there) and integrates the Newton-Euler equations in coordinates where the
 // stone can neither sink nor float: z_G and v_z (and v_t while the contact point sticks, and
 // the stuck angular components) are derived, never integrated, so every state handed out has
-// gap 0 to round-off. Between mode changes the motion is smooth and is integrated by an
-// adaptive Dormand-Prince 5(4) method with dense output (Boost.Odeint); every mode change is an
+// gap 0 to round-off. Between mode changes the motion is smooth and is integrated by Dormand and
+// Prince's adaptive 8(5,3) method with dense output (dop853.h); for an axisymmetric stone the spin
+// about its axis is a quadrature, not part of the integrated rotation. Every mode change is an
 // event located on the dense output by a bracketing root finder (TOMS 748):
 //   slip_stop / roll_stop / spin_stop  the sliding, rolling or spinning motion reaches zero; it is
 //                                      snapped to exactly zero by a plastic impulse (energy can
@@ -30,6 +31,7 @@
 #pragma once
 
 #include <functional>
+#include <limits>
 #include <memory>
 
 #include "virtual_go/body/rigid_body_state.h"
@@ -67,7 +69,7 @@ struct PlaneContactOutcome {
 };
 
 struct PlaneContactOptions {
-  double relative_tolerance = 1e-12;  // of the integrator, per step
+  double relative_tolerance = 1e-12;  // of the integrator, per step (maximum norm)
   double absolute_tolerance = 1e-14;  // of the integrator (m, m/s, rad/s, quaternion units)
   double max_step_s = 5e-3;           // longest integrator step, s
   double initial_step_s = 1e-4;       // first trial step after a mode change, s
@@ -116,7 +118,11 @@ class PlaneContact {
   // force exists (Painleve's paradox: for a size-33 lens only at mu >= 0.986, found over 2e5
   // random orientations; a sliding phase may then also end in a spurious lift_off), the mode
   // cannot be resolved, or the integrator fails.
-  PlaneContactOutcome advance(double t_end_s);
+  // `max_steps` is a work budget: when this call has taken that many integrator steps without
+  // reaching t_end_s or an event, it returns `none` at the last step's end (time_reached() <
+  // t_end_s, the state there exact as ever) and the next call goes on from there. Throws
+  // InvalidArgument for a negative budget.
+  PlaneContactOutcome advance(double t_end_s, long max_steps = std::numeric_limits<long>::max());
 
   // The state at t_s in [window start, time_reached()], where the window starts where the
   // previous call of advance() returned (so the caller can sample a time grid behind it), or at

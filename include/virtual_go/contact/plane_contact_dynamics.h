@@ -48,6 +48,12 @@ struct ContactLawPart {
   // the reference), not the fixed reference. Set by PlaneContact at each step's start; ignored
   // by solve_plane_contact.
   bool slaved = false;
+  // Which side of the direction layer the law is on. PlaneContact fixes it for whole integrator
+  // steps (inside: the reference or the slaved direction; outside: the motion's direction), so the
+  // law is smooth within every step, and ends a step where the speed crosses the layer's edge
+  // (an event located on the dense output, not a cascade of ever smaller steps at the jump).
+  // by_speed (the default): decided by the speed at each state.
+  enum class Layer { by_speed, inside, outside } layer = Layer::by_speed;
 };
 
 struct PlaneContactMode {
@@ -124,7 +130,8 @@ constexpr double kZeroAngularSpeed = 1e-10;  // rad/s (1e-12 m/s at the rim)
 constexpr double kSlipDirectionLayer = 1e-4;  // m/s
 constexpr double kRollDirectionLayer = 1e-4;  // rad/s (1e-6 m/s at the rim)
 
-// The sliding direction of a part (unit) from its velocity and reference, as the law uses it.
+// The sliding direction of a part (unit) from its velocity and reference, as the law uses it with
+// the layer decided by speed (a layer_speed of 0: the motion's direction unless it is zero).
 Eigen::Vector3d sliding_direction(const Eigen::Vector3d& velocity, const Eigen::Vector3d& reference,
                                   double layer_speed);
 

@@ -1,0 +1,283 @@
+// PlaneContact's integrator steps, the trajectory it keeps and sampling it (plane_contact_impl.h):
+// DOP853 (dop853.h) on the coordinates of plane_contact_laws.h, the events of each step located
+// on its dense output, and the energy guard at each step's end.
+#include <boost/math/tools/toms748_solve.hpp>
+#include <cmath>
+#include <limits>
+
+#include "plane_contact_impl.h"
+#include "virtual_go/common/validation.h"
+
+namespace virtual_go {
+namespace {
+
+using Vector3 = Eigen::Vector3d;
+using plane_contact_detail::EventValues;
+using plane_contact_detail::kStateSize;
+using plane_contact_detail::kTriggerCount;
+using plane_contact_detail::Trigger;
+
+// Integrator steps kept for state_at (about 2.3 kB each): a caller advancing far at once can
+// sample at least this many steps back.
+constexpr std::size_t kMaxStoredSegments = 4096;
+// Rejected trial steps in a row beyond this mean the integrator cannot go on.
+constexpr int kMaxRejections = 64;
+
+// Time brackets from TOMS 748 are accepted at this width (s): far below any physical scale,
+// a few ulps of a time of hours.
+struct TimeTolerance {
+  bool operator()(double a, double b) const {
+    return std::abs(b - a) <=
+           1e-15 + 4 * std::numeric_limits<double>::epsilon() * std::max(std::abs(a), std::abs(b));
+  }
+};
+
+}  // namespace
+
+PlaneContact::Impl::Segment& PlaneContact::Impl::SegmentRing::push_back(std::size_t limit) {
+  if (size_ == slots_.size()) {
+    if (slots_.size() >= limit) {
+      pop_front();
+    } else {
+      // Grow geometrically, oldest first again.
+      std::vector<Segment> grown;
+      grown.reserve(std::min(limit, std::max<std::size_t>(8, 2 * slots_.size())));
+      for (std::size_t i = 0; i < size_; ++i) grown.push_back((*this)[i]);
+      grown.resize(grown.capacity());
+      slots_.swap(grown);
+      head_ = 0;
+    }
+  }
+  ++size_;
+  return back();
+}
+
+void PlaneContact::Impl::push_point(double t) {
+  Segment& point = segments_.push_back(kMaxStoredSegments);
+  point.t_begin = point.t_end = t;
+  point.energy_begin = energy_cap_;
+  point.mode = mode_;
+  point.point = true;
+  point.h = 0.0;
+  point.dense_ready = false;
+  point.y0 = y_;
+}
+
+void PlaneContact::Impl::start_mode(const ModeChoice& choice, double t, double energy_cap) {
+  mode_ = choice.mode;
+  const PlaneContactKinematics k = laws_.capped(choice.kinematics, mode_, energy_cap);
+  y_ = laws_.encode(k);
+  t_ = t;
+  energy_cap_ = std::min(energy_cap, laws_.energy(k));
+  rates_ready_ = false;
+  if (choice.result == ModeChoice::Result::mode) g_start_ = laws_.event_values(k, mode_);
+  push_point(t);
+}
+
+void PlaneContact::Impl::refresh_references() {
+  const PlaneContactKinematics k = laws_.decode(mode_, y_, false);
+  // Outside the direction layer the reference is the motion's direction; inside it, a part whose
+  // direction has a stable zero near the reference is slaved to it for this step (the decision
+  // is taken here, once per step, so that the law stays smooth within the step).
+  // The side of the layer is taken by speed when the mode begins and changes only at the layer's
+  // edge (an event), so a step never straddles it.
+  auto refresh = [&](bool tangential, const Vector3& velocity, double layer) {
+    ContactLawPart& part = tangential ? mode_.tangential : mode_.rolling;
+    part.slaved = false;
+    if (part.law != ContactLaw::sliding) return;
+    if (part.layer == ContactLawPart::Layer::by_speed) {
+      part.layer =
+          velocity.norm() > layer ? ContactLawPart::Layer::outside : ContactLawPart::Layer::inside;
+    }
+    if (part.layer == ContactLawPart::Layer::outside) {
+      if (velocity.norm() > 0.0) part.reference_world = velocity.normalized();
+      return;
+    }
+    Vector3 direction;
+    if (laws_.slaved_direction(mode_, k, tangential, true, direction)) {
+      part.reference_world = direction;
+      part.slaved = true;
+    }
+  };
+  refresh(true, k.slip_velocity(), kSlipDirectionLayer);
+  refresh(false, k.rolling_velocity(), kRollDirectionLayer);
+  if (mode_.spinning.law == ContactLaw::sliding &&
+      std::abs(k.spin_velocity()) > kZeroAngularSpeed) {
+    mode_.spinning.reference_world = Vector3(0.0, 0.0, k.spin_velocity() > 0.0 ? 1.0 : -1.0);
+  }
+  // The zero-crossing events restart from |v| > 0 with the new references.
+  auto restart = [&](Trigger t, double value) {
+    if (g_start_.active[static_cast<int>(t)]) g_start_.g[static_cast<int>(t)] = value;
+  };
+  restart(Trigger::tangential_zero, k.slip_velocity().dot(mode_.tangential.reference_world));
+  restart(Trigger::rolling_zero, k.rolling_velocity().dot(mode_.rolling.reference_world));
+  restart(Trigger::spinning_zero, k.spin_velocity() * mode_.spinning.reference_world.z());
+  // A mode that just began has its sides now.
+  const auto layered = [](const ContactLawPart& p) {
+    return p.law == ContactLaw::sliding && p.layer != ContactLawPart::Layer::by_speed;
+  };
+  auto start_layer = [&](Trigger t, bool active) {
+    const int i = static_cast<int>(t);
+    if (active && !g_start_.active[i]) {
+      g_start_.active[i] = true;
+      g_start_.g[i] = laws_.event_value(t, k, mode_);
+    }
+  };
+  start_layer(Trigger::tangential_layer, layered(mode_.tangential));
+  start_layer(Trigger::rolling_layer, layered(mode_.rolling));
+}
+
+void PlaneContact::Impl::take_step() {
+  refresh_references();
+  if (!rates_ready_) {
+    laws_.rhs(mode_, y_, rates_);
+    rates_ready_ = true;
+  }
+
+  // The step is built in the slot it will be kept in; a rejected trial overwrites it. Nothing
+  // else changes before the step is complete: on an error the slot is dropped and the state
+  // stays at the last completed step.
+  Segment& segment = segments_.push_back(kMaxStoredSegments);
+  if (segments_.size() == kMaxStoredSegments) {
+    window_start_ = std::max(window_start_, segments_.front().t_begin);
+  }
+  try {
+    step_in(segment);
+  } catch (...) {
+    segments_.pop_back();
+    throw;
+  }
+}
+
+void PlaneContact::Impl::step_in(Segment& segment) {
+  const plane_contact_detail::PlaneContactLaws& laws = laws_;
+  const PlaneContactMode& mode = mode_;
+  auto f = [&laws, &mode](double /*t*/, const State& y, State& dydt) { laws.rhs(mode, y, dydt); };
+  segment.point = false;
+  segment.dense_ready = false;
+  segment.mode = mode_;
+  segment.energy_begin = energy_cap_;
+  segment.y0 = y_;
+  segment.k[0] = rates_;
+  State err5, err3;
+  double h = std::min(h_, laws_.options().max_step_s);
+  double error = 0.0;
+  bool rejected = false;
+  {
+    for (int trial = 0;; ++trial) {
+      if (trial > kMaxRejections || !(t_ + h > t_)) {
+        throw IntegrationError("plane contact: the integrator failed at t = " + format_value(t_) +
+                               " s (step size " + format_value(h) + " s rejected " +
+                               std::to_string(trial) + " times)");
+      }
+      dop853::trial_step<kStateSize>(f, t_, h, y_, segment.k, segment.y1, err5, err3);
+      error = dop853::error_norm<kStateSize>(h, err5, err3, laws_.error_scale(y_, segment.y1));
+      if (error <= 1.0) break;
+      h = std::isfinite(error) ? dop853::next_step_size(h, error, true) : h / 3.0;
+      rejected = true;
+    }
+    if (!segment.y1.allFinite()) {
+      throw IntegrationError(
+          "plane contact: the state became non-finite after t = " + format_value(t_) + " s");
+    }
+  }
+  ++laws_.counters().steps;
+  segment.t_begin = t_;
+  segment.h = h;
+  segment.t_end = t_ + h;
+  // The step end's rates: the next step's first stage, and the forces its events need.
+  PlaneContactForces forces_end;
+  laws_.rhs(mode_, segment.y1, segment.k[12], &forces_end);
+  const PlaneContactKinematics k_end = laws_.decode(mode_, segment.y1, false);
+
+  // Events: a value positive at the step start and not positive at its end; or one already not
+  // positive at the start that went negative (a part released the wrong way): at the start.
+  const EventValues g_end = laws_.event_values(k_end, mode_, &forces_end);
+  std::optional<PendingEvent> earliest;
+  for (int i = 0; i < kTriggerCount; ++i) {
+    if (!g_end.active[i] || !g_start_.active[i]) continue;
+    const double g0 = g_start_.g[i], g1 = g_end.g[i];
+    double time;
+    if (g0 > 0.0 && g1 <= 0.0) {
+      const Trigger trigger = static_cast<Trigger>(i);
+      auto g = [&](double t) {
+        const State y = state_in(segment, t);
+        return laws_.event_value(trigger, laws_.decode(segment.mode, y, false), segment.mode);
+      };
+      boost::uintmax_t iterations = 100;
+      const auto bracket = boost::math::tools::toms748_solve(g, segment.t_begin, segment.t_end, g0,
+                                                             g1, TimeTolerance(), iterations);
+      time = bracket.second;  // the first time found on the far side
+    } else if (g0 <= 0.0 && g1 < 0.0) {
+      time = segment.t_begin;
+    } else {
+      continue;
+    }
+    if (!earliest || time < earliest->time) earliest = PendingEvent{time, static_cast<Trigger>(i)};
+  }
+
+  // The energy guard at the step end.
+  double energy_end = laws_.energy(k_end);
+  bool scaled = false;
+  PlaneContactKinematics k_next;
+  if (energy_end > energy_cap_) {
+    const PlaneContactKinematics k_full = laws_.decode(mode_, segment.y1, true);
+    k_next = laws_.capped(k_full, mode_, energy_cap_);
+    if (k_next.angular_velocity_world != k_full.angular_velocity_world ||
+        k_next.velocity_world != k_full.velocity_world) {
+      energy_end = laws_.energy(k_next);
+      ++laws_.counters().energy_guard_scalings;
+      scaled = true;
+    }
+  }
+  if (earliest) {
+    segment.t_end = earliest->time;
+    pending_ = earliest;
+    return;
+  }
+  t_ = segment.t_end;
+  h_ = dop853::next_step_size(h, error, rejected);
+  if (scaled) {
+    y_ = laws_.encode(k_next);  // restart the integrator from the scaled state
+    rates_ready_ = false;
+  } else {
+    y_ = segment.y1;
+    rates_ = segment.k[12];
+    laws_.fold_spin(y_, &rates_);
+  }
+  energy_cap_ = std::min(energy_cap_, energy_end);  // never raised, not even by round-off
+  g_start_ = g_end;
+}
+
+plane_contact_detail::State PlaneContact::Impl::state_in(const Segment& segment, double t) const {
+  if (segment.point || t <= segment.t_begin) return segment.y0;
+  if (t >= segment.t_begin + segment.h) return segment.y1;
+  if (!segment.dense_ready) {
+    // Dense output only for the steps sampled or searched: three more evaluations.
+    Segment& s = const_cast<Segment&>(segment);  // the ring is mutable: a cache of the step
+    auto f = [this, &s](double /*t*/, const State& y, State& dydt) { laws_.rhs(s.mode, y, dydt); };
+    dop853::dense_coefficients<kStateSize>(f, s.t_begin, s.h, s.y0, s.k, s.dense);
+    s.dense_ready = true;
+  }
+  return dop853::interpolate<kStateSize>((t - segment.t_begin) / segment.h, segment.h, segment.y0,
+                                         segment.y1, segment.k[0], segment.k[12], segment.dense);
+}
+
+PlaneContact::Impl::Sample PlaneContact::Impl::sample(double t) const {
+  if (finished_ && t >= finished_->time) return finished_->sample;
+  // The latest segment containing t (the state right after an event wins at its instant).
+  for (std::size_t i = segments_.size(); i-- > 0;) {
+    const Segment& s = segments_[i];
+    if (t < s.t_begin || t > s.t_end) continue;
+    const PlaneContactKinematics k = laws_.decode(s.mode, state_in(s, t));
+    // Never above the guarded energy where the step began. (Not a chord between the step's
+    // ends: a dissipation rate growing within the step puts the true energy above the chord.)
+    return {laws_.capped(k, s.mode, s.energy_begin), s.mode};
+  }
+  throw InvalidArgument("t_s", "contact state requested at t = " + format_value(t) +
+                                   " s, outside the available range [" +
+                                   format_value(window_start_) + ", " + format_value(reached_) +
+                                   "] s");
+}
+
+}  // namespace virtual_go
