@@ -92,7 +92,7 @@ class ImpulseProcess {
     };
     auto locate = [&](auto&& event, double length) {
       const double at_end = event(length);
-      if (at_end == 0.0) return length;
+      if (at_end == 0.0 || !(length > 0.0)) return length;
       std::uintmax_t iterations = 100;
       const auto bracket = boost::math::tools::toms748_solve(
           event, 0.0, length, event(0.0), at_end,
@@ -103,9 +103,11 @@ class ImpulseProcess {
 
     double h = 1e-2;
     for (;;) {
-      if (steps_ + rejected_ > options_.max_steps) {
-        throw IntegrationError("impact: the slip integration did not finish in " +
-                               std::to_string(options_.max_steps) + " steps");
+      if (steps_ + rejected_ >= options_.max_steps) {
+        // The budget is spent (every pass above counts): the rest of the impact without
+        // friction, closed form. It only stops short of the law's dissipation, never adds energy.
+        finish_frictionless();
+        return;
       }
       const Eigen::Vector3d u = velocity(p_, pt_);
       const Eigen::Vector2d ut = u.head<2>();
@@ -152,6 +154,10 @@ class ImpulseProcess {
         ++rejected_;
         continue;
       }
+      if (!(p > p_old)) {  // the step is below p's resolution: no progress is possible
+        finish_frictionless();
+        return;
+      }
       const Eigen::Vector3d u_new = velocity(p, Eigen::Vector2d(y[0], y[1]));
       if (u_new.head<2>().dot(ut) <= 0.0) {  // reached or crossed u_t = 0: shorter step
         h = 0.5 * (p - p_old);
@@ -190,6 +196,7 @@ class ImpulseProcess {
   bool stuck() const { return stuck_; }
   bool stuck_at_compression() const { return stuck_at_compression_; }
   int steps() const { return steps_; }
+  bool frictionless_fallback() const { return fallback_; }
 
  private:
   Eigen::Vector3d velocity(double p, const Eigen::Vector2d& pt) const {
@@ -220,6 +227,12 @@ class ImpulseProcess {
       return s0 * s0 + s1 * s1 - 1.0;
     };
     const double hi = ktn.norm();
+    if (!std::isfinite(excess(0.0)) || !(excess(hi) <= 0.0)) {
+      // mu so small that mu K_tt underflows next to K_tn: the ray is K_tn's direction (the
+      // limit l -> |K_tn|).
+      ray_ = ktn / hi;
+      return;
+    }
     std::uintmax_t iterations = 100;
     const auto bracket = boost::math::tools::toms748_solve(
         excess, 0.0, hi, excess(0.0), excess(hi),
@@ -228,6 +241,15 @@ class ImpulseProcess {
     const double l = 0.5 * (bracket.first + bracket.second);
     const Eigen::Vector2d s_eigen(kt.x() / (mu_ * kappa.x() + l), kt.y() / (mu_ * kappa.y() + l));
     ray_ = (eigen.eigenvectors() * s_eigen).normalized();
+  }
+
+  // The fallback: the impact goes on from where it is along K n (no tangential impulse) to the
+  // same end conditions. The energy balance dE = W - mu int |u_t| dp keeps its sign: the normal
+  // work still ends at (1 - e*^2) W_c and the friction work done so far is dissipative.
+  void finish_frictionless() {
+    fallback_ = true;
+    stuck_ = false;
+    advance_linear(Eigen::Vector2d::Zero(), kInfinity);
   }
 
   void move_linear(const Eigen::Vector2d& xi, double delta) {
@@ -251,10 +273,19 @@ class ImpulseProcess {
   // the end of compression; true when the impact has ended.
   bool advance_linear(const Eigen::Vector2d& xi, double delta_max) {
     const double an = k_.row(2).dot(Eigen::Vector3d(xi.x(), xi.y(), 1.0));
+    // A phase that would never end (a jam: the approach or the rebound never completes along
+    // xi) goes on frictionless instead, where an = K_nn = 1 ends both.
+    auto jammed = [&](double length) {
+      return length == kInfinity && delta_max == kInfinity && xi != Eigen::Vector2d::Zero();
+    };
     for (;;) {
       const double un = velocity(p_, pt_).z();
       if (!compressed_) {
         const double dc = un >= 0.0 ? 0.0 : (an > 0.0 ? -un / an : kInfinity);
+        if (jammed(dc)) {
+          finish_frictionless();
+          return true;
+        }
         if (dc > delta_max) {
           move_linear(xi, delta_max);
           return false;
@@ -266,6 +297,10 @@ class ImpulseProcess {
         continue;
       }
       const double dr = restitution_step(un, an, w_target_ - w_);
+      if (jammed(dr)) {
+        finish_frictionless();
+        return true;
+      }
       if (dr > delta_max) {
         move_linear(xi, delta_max);
         return false;
@@ -287,6 +322,7 @@ class ImpulseProcess {
   Eigen::Vector2d stick_rate_ = Eigen::Vector2d::Zero();
   Eigen::Vector2d ray_ = Eigen::Vector2d::Zero();  // the re-slip direction when !can_stick_
   int steps_ = 0, rejected_ = 0;
+  bool fallback_ = false;
 };
 
 }  // namespace
@@ -335,24 +371,30 @@ Impact resolve_impact(const MotionModel& model, const RigidBodyState& before,
   result.contact_velocity_before_world = u;
   result.contact_velocity_after_world = u;
   result.normal_velocity_before_mps = result.normal_velocity_after_mps = u.dot(n);
-  if (!(u.dot(n) < 0.0)) {
+  // Everything below works on u / |u|_max: a velocity of 1e-300 m/s or a denormal one has a
+  // squared norm that underflows to 0, which would make the scaled process 0/0.
+  const double u_max = u.cwiseAbs().maxCoeff();
+  const Eigen::Vector3d u_unit = u_max > 0.0 ? Eigen::Vector3d(u / u_max) : u;
+  if (!(u_unit.dot(n) < 0.0)) {
     result.separating = true;
     return result;
   }
 
   // Contact frame: t1 along the initial slip (any tangent when there is none), t2 = n x t1.
-  const Eigen::Vector3d u_t = u - u.dot(n) * n;
-  const Eigen::Vector3d t1 =
-      u_t.norm() > 1e-15 * u.norm() ? Eigen::Vector3d(u_t.normalized()) : any_perpendicular(n);
+  const Eigen::Vector3d u_t = u_unit - u_unit.dot(n) * n;
+  const Eigen::Vector3d t1 = u_t.norm() > 1e-15 * u_unit.norm() ? Eigen::Vector3d(u_t.normalized())
+                                                                 : any_perpendicular(n);
   Eigen::Matrix3d basis;
   basis << t1, n.cross(t1), n;
   const Eigen::Matrix3d k_world = impulse_response_world(model, state.orientation, r);
   const Eigen::Matrix3d k = basis.transpose() * k_world * basis;
+  const Eigen::Vector3d uc_unit = basis.transpose() * u_unit;
   const Eigen::Vector3d uc = basis.transpose() * u;
-  const double speed = uc.norm(), knn = k(2, 2);
-  const double impulse_scale = speed / knn;  // N s per unit of the scaled impulse
+  const double speed_unit = uc_unit.norm(), knn = k(2, 2);
+  const double impulse_scale = u_max * speed_unit / knn;  // N s per unit of the scaled impulse
 
-  ImpulseProcess process(k / knn, uc / speed, material.friction, material.restitution, options);
+  ImpulseProcess process(k / knn, uc_unit / speed_unit, material.friction, material.restitution,
+                         options);
   process.run();
   Eigen::Vector3d pc = impulse_scale * process.impulse();
   bool stuck = process.stuck();
@@ -385,6 +427,7 @@ Impact resolve_impact(const MotionModel& model, const RigidBodyState& before,
   result.normal_velocity_after_mps = result.contact_velocity_after_world.dot(n);
   result.stuck = stuck;
   result.slip_steps = process.steps();
+  result.frictionless_fallback = process.frictionless_fallback();
   return result;
 }
 

@@ -17,8 +17,13 @@ using Vector3 = Eigen::Vector3d;
 using plane_contact_detail::ModeChoice;
 using plane_contact_detail::Trigger;
 
-// Events at one and the same instant beyond this mean the mode cannot be resolved.
+// Events at one instant beyond this mean the mode cannot be resolved. Events count as at one
+// instant while each follows the previous one by at most kSameInstantS: a motion pinned to an
+// event surface (the slip speed held at its direction layer's edge, where the law on either
+// side pushes it back across: a Filippov sliding motion the event scheme cannot follow) makes
+// events a round-off step (~1e-15 s) apart, which would otherwise go on for thousands of steps.
 constexpr int kMaxEventsAtOneInstant = 64;
+constexpr double kSameInstantS = 1e-12;
 }  // namespace
 
 const char* plane_contact_event_name(PlaneContactEvent event) {
@@ -168,15 +173,15 @@ PlaneContactForces PlaneContact::Impl::forces_at(double t) const {
 std::optional<PlaneContactOutcome> PlaneContact::Impl::process(const PendingEvent& event) {
   ++laws_.counters().events;
   const double t = event.time;
-  if (t == last_event_time_) {
+  if (t - last_event_time_ <= kSameInstantS) {
     if (++events_at_instant_ > kMaxEventsAtOneInstant) {
       throw IntegrationError("plane contact: the contact mode cannot be resolved at t = " +
                              format_value(t) + " s (mode changes keep following each other)");
     }
   } else {
-    last_event_time_ = t;
     events_at_instant_ = 0;
   }
+  last_event_time_ = t;
   const Sample before = sample(t);
   const PlaneContactMode old_mode = mode_;
   const double cap = laws_.energy(before.kinematics);
@@ -345,6 +350,12 @@ PlaneContact::PlaneContact(const MotionModel& model, const LensGeometry& lens,
           t0_s, options)) {}
 
 PlaneContact::~PlaneContact() = default;
+PlaneContact::PlaneContact(const PlaneContact& other)
+    : impl_(std::make_unique<Impl>(*other.impl_)) {}
+PlaneContact& PlaneContact::operator=(const PlaneContact& other) {
+  if (this != &other) impl_ = std::make_unique<Impl>(*other.impl_);
+  return *this;
+}
 PlaneContact::PlaneContact(PlaneContact&&) noexcept = default;
 PlaneContact& PlaneContact::operator=(PlaneContact&&) noexcept = default;
 

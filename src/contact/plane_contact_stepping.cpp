@@ -204,10 +204,14 @@ void PlaneContact::Impl::step_in(Segment& segment) {
         const State y = state_in(segment, t);
         return laws_.event_value(trigger, laws_.decode(segment.mode, y, false), segment.mode);
       };
-      boost::uintmax_t iterations = 100;
-      const auto bracket = boost::math::tools::toms748_solve(g, segment.t_begin, segment.t_end, g0,
-                                                             g1, TimeTolerance(), iterations);
-      time = bracket.second;  // the first time found on the far side
+      if (!(segment.t_end > segment.t_begin)) {
+        time = segment.t_begin;  // a step below the time's resolution: no bracket to search
+      } else {
+        boost::uintmax_t iterations = 100;
+        const auto bracket = boost::math::tools::toms748_solve(
+            g, segment.t_begin, segment.t_end, g0, g1, TimeTolerance(), iterations);
+        time = bracket.second;  // the first time found on the far side
+      }
     } else if (g0 <= 0.0 && g1 < 0.0) {
       time = segment.t_begin;
     } else {

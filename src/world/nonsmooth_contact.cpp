@@ -182,8 +182,12 @@ std::optional<NonsmoothOutcome> NonsmoothContact::ending(const SubStep& step, do
   return std::nullopt;
 }
 
-NonsmoothOutcome NonsmoothContact::advance(double t_end_s) {
+NonsmoothOutcome NonsmoothContact::advance(double t_end_s, long max_steps) {
   require_finite("nonsmooth advance time", t_end_s);
+  if (max_steps < 0) {
+    throw InvalidArgument("max_steps", "nonsmooth advance: max_steps must be >= 0, got " +
+                                           std::to_string(max_steps));
+  }
   if (finished_) {
     if (t_end_s != finished_->time_s) {
       throw InvalidArgument("t_end_s",
@@ -197,8 +201,14 @@ NonsmoothOutcome NonsmoothContact::advance(double t_end_s) {
                                          " s is before the time already reached, " +
                                          format_value(reached_) + " s");
   }
-  while (lattice(steps_ + 1) <= t_end_s) {
+  for (long taken = 0; lattice(steps_ + 1) <= t_end_s; ++taken) {
     const double t = lattice(steps_ + 1);
+    if (taken >= max_steps) {
+      // The budget is spent: stop at the last lattice point (or where the previous call
+      // stopped, if later), to be continued.
+      t_end_s = std::max(reached_, lattice(steps_));
+      break;
+    }
     const SubStep step = sub_step(state_, t - lattice(steps_), energy_, true);
     ++steps_;
     ++counters_.steps;

@@ -26,6 +26,10 @@ constexpr double kResolvableGapM = 1e-12;
 // plane being left, not an impact (the plane model accepts |u_n| up to 1e-6 m/s).
 constexpr double kLeavingSpeedMps = 1e-6;
 constexpr double kFirstProbeS = 1e-9;
+// An approach slower than this (m/s) is a touching state, not an impact: it closes less than the
+// 1e-12 m gap resolution in a millisecond. The plane model (or the fallback) removes it by a
+// plastic impulse. Physically zero speeds (1e-300 m/s, denormals) are handled here.
+constexpr double kTouchingSpeedMps = 1e-9;
 
 }  // namespace
 
@@ -110,55 +114,123 @@ const ContactMaterial& World::material_of(const BoardFeature& feature) const {
 // Advancing
 
 void World::advance_to(double t_s, std::vector<WorldEvent>& events) {
+  (void)advance_to(t_s, events, WorkBudget{});
+}
+
+bool World::is_cheap(std::size_t i, double t_s) const {
+  const StoneHot& h = hot_[i];
+  return h.mode == StoneMode::resting ||
+         (h.mode == StoneMode::flight && t_s < h.next_contact_s && t_s <= h.clear_until_s);
+}
+
+void World::sample_flight(std::size_t i, double t_s) {
+  StoneHot& h = hot_[i];
+  if (h.mode != StoneMode::flight) return;  // resting: frozen, no work at all
+  if (records_[i].flight.sample(*exact_, h.state, h.state_time_s, t_s)) {
+    h.state_time_s = t_s;
+    ++counters_.flight_steps;
+  }
+}
+
+AdvanceResult World::advance_to(double t_s, std::vector<WorldEvent>& events,
+                                 const WorkBudget& budget) {
   require_finite("time", t_s);
   if (t_s < time_) {
     throw InvalidArgument("time", "advance time " + format_value(t_s) +
                                       " s is before the world's time " + format_value(time_) +
                                       " s");
   }
-  ++counters_.advance_calls;
-  for (std::size_t i = 0; i < hot_.size(); ++i) {
-    StoneHot& h = hot_[i];
-    if (h.mode == StoneMode::resting) continue;  // frozen: no work at all
-    if (h.mode == StoneMode::flight && t_s < h.next_contact_s && t_s <= h.clear_until_s) {
-      // The common case: a flight sample, nothing to search.
-      if (records_[i].flight.sample(*exact_, h.state, h.state_time_s, t_s)) {
-        h.state_time_s = t_s;
-        ++counters_.flight_steps;
-      }
-      continue;
-    }
-    advance_stone(i, t_s);
+  if (budget.max_steps < 1) {
+    throw InvalidArgument("max_steps", "advance work budget max_steps must be at least 1, got " +
+                                           std::to_string(budget.max_steps));
   }
-  time_ = t_s;
+  ++counters_.advance_calls;
+  const long work_start = counters_.work();
+  const bool bounded = budget.max_steps != std::numeric_limits<long>::max();
+  // The stones whose advance costs more than a flight sample (in contact, or meeting a contact
+  // before t_s) go first; the cheap ones are sampled at the end, at the time all reached.
+  std::vector<std::size_t> costly;
+  for (std::size_t i = 0; i < hot_.size(); ++i) {
+    if (!is_cheap(i, t_s)) costly.push_back(i);
+  }
+  double target = t_s;
+  bool stopped = false;
+  // With a budget and several costly stones, each one's state before it is advanced: a stone
+  // that went past the stop time of a later one is taken back and advanced to that time again.
+  struct Snapshot {
+    std::size_t stone;
+    StoneHot hot;
+    StoneRecord record;
+  };
+  std::vector<Snapshot> snapshots;
+  for (std::size_t k = 0; k < costly.size(); ++k) {
+    const std::size_t i = costly[k];
+    if (bounded && costly.size() > 1) snapshots.push_back(Snapshot{i, hot_[i], records_[i]});
+    long limit = std::numeric_limits<long>::max();
+    if (bounded) {
+      const long left = std::max(0L, budget.max_steps - (counters_.work() - work_start));
+      const long share = std::max(1L, left / static_cast<long>(costly.size() - k));
+      limit = counters_.work() + share;
+    }
+    if (advance_stone(i, target, limit)) continue;
+    stopped = true;
+    const double stop = hot_[i].state_time_s;
+    if (!(stop < target)) continue;  // stopped at the target itself, with work left there
+    target = stop;
+    for (std::size_t j = 0; j + 1 < snapshots.size(); ++j) {
+      const Snapshot& snap = snapshots[j];
+      if (!(hot_[snap.stone].state_time_s > target)) continue;
+      hot_[snap.stone] = snap.hot;
+      records_[snap.stone] = snap.record;
+      pending_.erase(std::remove_if(pending_.begin(), pending_.end(),
+                                    [&](const WorldEvent& e) {
+                                      return e.stone == snap.stone && e.time_s > snap.hot.state_time_s;
+                                    }),
+                     pending_.end());
+      // The same steps as before up to the earlier time: no more work than it already took.
+      (void)advance_stone(snap.stone, target, std::numeric_limits<long>::max());
+    }
+  }
+  for (std::size_t i = 0; i < hot_.size(); ++i) {
+    if (is_cheap(i, target)) sample_flight(i, target);
+  }
+  time_ = target;
   flush(events);
+  AdvanceResult result;
+  result.reached = !stopped;
+  result.time_s = time_;
+  result.work = counters_.work() - work_start;
+  return result;
 }
 
 void World::flush(std::vector<WorldEvent>& events) {
   // Each stone's events are in time order; merge the stones' by time (stable: ties keep the
   // stone order and, within a stone, the order they happened in).
-  std::stable_sort(pending_.begin(), pending_.end(),
-                   [](const WorldEvent& a, const WorldEvent& b) { return a.time_s < b.time_s; });
+  std::stable_sort(pending_.begin(), pending_.end(), [](const WorldEvent& a, const WorldEvent& b) {
+    return a.time_s < b.time_s || (a.time_s == b.time_s && a.stone < b.stone);
+  });
   events.insert(events.end(), pending_.begin(), pending_.end());
   pending_.clear();
 }
 
-void World::advance_stone(std::size_t i, double t_s) {
+bool World::advance_stone(std::size_t i, double t_s, long work_limit) {
   for (;;) {
     StoneHot& h = hot_[i];
-    bool reached = false;
+    if (h.mode == StoneMode::resting) return true;
+    if (counters_.work() >= work_limit) return false;
+    bool went_on = false;  // false: a transition happened, go on in the new mode
     switch (h.mode) {
       case StoneMode::resting:
-        return;
+        return true;
       case StoneMode::flight:
-        reached = advance_flight(i, t_s);
+        went_on = advance_flight(i, t_s);
         break;
       case StoneMode::contact:
-        reached = records_[i].phase == ContactPhase::plane ? advance_plane(i, t_s)
-                                                           : advance_nonsmooth(i, t_s);
+        went_on = records_[i].phase == ContactPhase::plane ? advance_plane(i, t_s, work_limit)
+                                                           : advance_nonsmooth(i, t_s, work_limit);
         break;
     }
-    if (reached) return;
+    if (went_on) return !(hot_[i].state_time_s < t_s) || hot_[i].mode == StoneMode::resting;
   }
 }
 
@@ -201,12 +273,12 @@ bool World::advance_flight(std::size_t i, double t_s) {
   return true;
 }
 
-bool World::advance_plane(std::size_t i, double t_s) {
+bool World::advance_plane(std::size_t i, double t_s, long work_limit) {
   StoneHot& h = hot_[i];
   StoneRecord& r = records_[i];
   PlaneContactOutcome o;
   try {
-    o = r.plane->advance(t_s);
+    o = r.plane->advance(t_s, std::max(1L, work_limit - counters_.work()));
   } catch (const IntegrationError&) {
     // No consistent contact force (Painleve) or an integrator failure: the fallback takes the
     // contact from the last state handed out, which is exact up to there.
@@ -239,10 +311,10 @@ bool World::advance_plane(std::size_t i, double t_s) {
   }
 }
 
-bool World::advance_nonsmooth(std::size_t i, double t_s) {
+bool World::advance_nonsmooth(std::size_t i, double t_s, long work_limit) {
   StoneHot& h = hot_[i];
   StoneRecord& r = records_[i];
-  const NonsmoothOutcome o = r.nonsmooth->advance(t_s);
+  const NonsmoothOutcome o = r.nonsmooth->advance(t_s, std::max(1L, work_limit - counters_.work()));
   sync_nonsmooth_counters(i);
   h.state = o.state;
   h.state_time_s = o.time_s;
@@ -329,7 +401,7 @@ void World::begin_flight(std::size_t i, const RigidBodyState& state, double t_s,
 
 void World::handle_contact(std::size_t i) {
   const TimeOfImpact c = *records_[i].flight.contact();
-  if (!(c.approach_speed_mps > 0.0)) {
+  if (!(c.approach_speed_mps > kTouchingSpeedMps)) {
     // Not in flight at all: resting on (or sliding along) the surface already.
     enter_sustained(i, c.state, c.time_s, c.contact);
     return;
@@ -340,6 +412,8 @@ void World::handle_contact(std::size_t i) {
                                        c.contact.lens.normal_world, material_of(c.contact.feature),
                                        config_.motion.gravity_world, options);
   ++counters_.impacts;
+  counters_.impact_slip_steps += impact.slip_steps;
+  if (impact.frictionless_fallback) ++counters_.impact_fallbacks;
   WorldEvent& e = emit(i, c.time_s, WorldEventKind::impact, WorldEventDetail::impact, impact.state);
   e.has_feature = true;
   e.feature = c.contact.feature;
@@ -458,7 +532,7 @@ void World::set_state(std::size_t stone, const RigidBodyState& state, double t_s
   // A command is a new start: the same-instant guard counts from here.
   records_[stone].transition_time_s = -std::numeric_limits<double>::infinity();
   begin_flight(stone, s, t_s, false);
-  advance_stone(stone, t_s);
+  (void)advance_stone(stone, t_s, std::numeric_limits<long>::max());
   flush(events);
 }
 

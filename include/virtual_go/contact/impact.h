@@ -34,7 +34,11 @@ struct ImpactOptions {
   double zeno_height_m = 1e-6;
   // Relative tolerance of the slip integration (per unit of the approach speed).
   double tolerance = 1e-12;
-  int max_steps = 100000;  // of the slip integration; exceeded -> IntegrationError
+  // Work budget of the slip integration (accepted plus rejected steps). When it is spent, or
+  // a step can no longer move the impulse, the rest of the impact is taken without friction
+  // (closed form, Impact::frictionless_fallback): the normal work still ends at (1 - e*^2) W_c,
+  // so the impact still cannot add energy; it only dissipates less than the law would.
+  int max_steps = 100000;
 };
 
 struct Impact {
@@ -51,6 +55,7 @@ struct Impact {
   bool stuck = false;       // the contact point's slip ended (u_t = 0) and stayed so
   bool sustained = false;   // Zeno cut-off applied: the contact stays (u_n+ = 0)
   int slip_steps = 0;       // accepted steps of the slip integration
+  bool frictionless_fallback = false;  // the slip integration could not finish (ImpactOptions)
 };
 
 // K = (1/m) 1 - [r]x I_world^-1 [r]x for the lever arm r (world, m), as the model sees the
@@ -62,8 +67,9 @@ Eigen::Matrix3d impulse_response_world(const MotionModel& model,
 // Resolves the impact of the stone in `before` touching a static obstacle at contact_point_world
 // with the unit normal_world pointing from the obstacle into the stone. gravity_world is used
 // only for the Zeno cut-off (g_n = -n . g; no cut-off when g_n <= 0). Throws InvalidArgument
-// naming the field for non-finite input, a zero normal or a bad material; IntegrationError if
-// the slip integration does not finish.
+// naming the field for non-finite input, a zero normal or a bad material, and never fails
+// otherwise: the work is bounded by options.max_steps, and every contact velocity is handled,
+// 1e-300 m/s and denormal components included (the process runs on u / max|u_i|).
 Impact resolve_impact(const MotionModel& model, const RigidBodyState& before,
                       const Eigen::Vector3d& contact_point_world,
                       const Eigen::Vector3d& normal_world, const ContactMaterial& material,

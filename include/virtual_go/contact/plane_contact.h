@@ -104,6 +104,8 @@ class PlaneContact {
                const RigidBodyState& state, double t0_s,
                const PlaneContactOptions& options = PlaneContactOptions());
   ~PlaneContact();
+  PlaneContact(const PlaneContact& other);  // a full copy: the copy goes on independently
+  PlaneContact& operator=(const PlaneContact& other);
   PlaneContact(PlaneContact&&) noexcept;
   PlaneContact& operator=(PlaneContact&&) noexcept;
 

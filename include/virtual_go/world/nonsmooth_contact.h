@@ -32,6 +32,7 @@
 //              free flight from there contact-free for separation_time_s.
 #pragma once
 
+#include <limits>
 #include <optional>
 
 #include "virtual_go/body/rigid_body_state.h"
@@ -95,8 +96,11 @@ class NonsmoothContact {
 
   // Commits the sub-steps up to t_end_s (>= the time of the previous call) and returns the state
   // there, or the first end of the phase (then the phase is over: only that time may be asked
-  // for again). Throws InvalidArgument for a non-finite or earlier time.
-  NonsmoothOutcome advance(double t_end_s);
+  // for again). Throws InvalidArgument for a non-finite or earlier time, or a negative budget.
+  // `max_steps` is a work budget: when this call has committed that many sub-steps without
+  // reaching t_end_s or an end, it returns `none` at the last lattice point reached (time_s <
+  // t_end_s) and the next call goes on from there.
+  NonsmoothOutcome advance(double t_end_s, long max_steps = std::numeric_limits<long>::max());
 
   double start_time() const { return t0_; }
   double lattice_time() const { return lattice(steps_); }  // time of the last committed state

@@ -35,6 +35,20 @@
 
 namespace virtual_go {
 
+// A bound on the work of one World::advance_to call, in the units of WorldCounters::work():
+// time-of-impact searches and their steps, impacts and their slip steps, plane-contact
+// integrator steps and fallback sub-steps, summed over all stones.
+struct WorkBudget {
+  long max_steps = std::numeric_limits<long>::max();  // > 0
+};
+
+// How far a budgeted advance_to got.
+struct AdvanceResult {
+  bool reached = true;  // time() == the requested time
+  double time_s = 0.0;  // time() after the call: every stone is there
+  long work = 0;        // WorldCounters::work() spent by the call
+};
+
 class World {
  public:
   // One stone, or several, at t0_s (world time line, s). Throws InvalidArgument naming the field
@@ -57,6 +71,21 @@ class World {
   // force, an integrator failure) hands the stone to the fallback; IntegrationError escapes
   // only if an impact's slip integration fails.
   void advance_to(double t_s, std::vector<WorldEvent>& events);
+
+  // The same with a work budget, so that a caller with a deadline (the node's timer) can bound
+  // the work per call. When the budget is spent before t_s, every stone is stopped at one time
+  // t_stop in [time(), t_s] (time() becomes t_stop; states exact there as ever: no overlap, no
+  // energy gain, events up to t_stop appended) and the result says reached = false; the next
+  // call goes on from there. Bound: the work of one call is at most 2 * max_steps plus one
+  // indivisible unit per stone in contact: an impact (ImpactOptions::max_steps slip steps at most),
+  // a time-of-impact search (TimeOfImpactOptions::max_steps), a plane-contact step with its event
+  // location, or a fallback sub-step. (The factor 2: when several stones are in contact, the
+  // budget is shared among them, and those that went past the stop time of another are taken
+  // back and advanced to it again, which costs at most what they had spent.) A budget is split
+  // evenly among the stones in contact; each gets at least one step, so every call makes progress
+  // unless a stone is at an instant with several transitions. Throws InvalidArgument for
+  // max_steps < 1 besides the checks above.
+  AdvanceResult advance_to(double t_s, std::vector<WorldEvent>& events, const WorkBudget& budget);
 
   // A command: the stone's state becomes `state` at t_s (>= time(); the world is first advanced
   // to t_s, its events appended). A resting stone is woken (a `wake` event first); events the
@@ -108,10 +137,14 @@ class World {
 
   void check_state(const std::string& field, const RigidBodyState& state) const;
   void start_stones(const std::vector<RigidBodyState>& states, double t0_s);
-  void advance_stone(std::size_t i, double t_s);
+  // True when the stone reached t_s (or rests); false when the work counter hit work_limit
+  // first (the stone is then at hot_[i].state_time_s < t_s).
+  bool advance_stone(std::size_t i, double t_s, long work_limit);
+  bool is_cheap(std::size_t i, double t_s) const;
+  void sample_flight(std::size_t i, double t_s);
   bool advance_flight(std::size_t i, double t_s);
-  bool advance_plane(std::size_t i, double t_s);
-  bool advance_nonsmooth(std::size_t i, double t_s);
+  bool advance_plane(std::size_t i, double t_s, long work_limit);
+  bool advance_nonsmooth(std::size_t i, double t_s, long work_limit);
   TimeOfImpact search(std::size_t i, double from_s, double to_s);
   void begin_flight(std::size_t i, const RigidBodyState& state, double t_s, bool after_lift_off);
   void handle_contact(std::size_t i);

@@ -10,11 +10,20 @@ struct WorldCounters {
   long contact_searches = 0;      // time-of-impact searches
   long contact_search_steps = 0;  // their advancement and polishing steps
   long impacts = 0;               // impacts resolved (Stronge)
+  long impact_slip_steps = 0;     // their slip-integration steps
+  long impact_fallbacks = 0;      // impacts finished without friction (ImpactOptions::max_steps)
   long plane_contact_steps = 0;   // accepted integrator steps of plane contacts
   long plane_contact_rhs = 0;     // their right-hand-side evaluations
   long nonsmooth_steps = 0;       // committed sub-steps of the fallback
   long nonsmooth_impulses = 0;    // plastic impulses of the fallback
   long events = 0;                // events reported
+
+  // The work a WorkBudget bounds (world.h): every step of a contact model, search or impact.
+  // Flight samples are not counted: one per flying stone per call, in closed form.
+  long work() const {
+    return contact_searches + contact_search_steps + impacts + impact_slip_steps +
+           plane_contact_steps + nonsmooth_steps;
+  }
 };
 
 }  // namespace virtual_go
