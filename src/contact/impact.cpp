@@ -382,8 +382,8 @@ Impact resolve_impact(const MotionModel& model, const RigidBodyState& before,
 
   // Contact frame: t1 along the initial slip (any tangent when there is none), t2 = n x t1.
   const Eigen::Vector3d u_t = u_unit - u_unit.dot(n) * n;
-  const Eigen::Vector3d t1 = u_t.norm() > 1e-15 * u_unit.norm() ? Eigen::Vector3d(u_t.normalized())
-                                                                 : any_perpendicular(n);
+  const Eigen::Vector3d t1 =
+      u_t.norm() > 1e-15 * u_unit.norm() ? Eigen::Vector3d(u_t.normalized()) : any_perpendicular(n);
   Eigen::Matrix3d basis;
   basis << t1, n.cross(t1), n;
   const Eigen::Matrix3d k_world = impulse_response_world(model, state.orientation, r);

@@ -208,8 +208,8 @@ void PlaneContact::Impl::step_in(Segment& segment) {
         time = segment.t_begin;  // a step below the time's resolution: no bracket to search
       } else {
         boost::uintmax_t iterations = 100;
-        const auto bracket = boost::math::tools::toms748_solve(
-            g, segment.t_begin, segment.t_end, g0, g1, TimeTolerance(), iterations);
+        const auto bracket = boost::math::tools::toms748_solve(g, segment.t_begin, segment.t_end,
+                                                               g0, g1, TimeTolerance(), iterations);
         time = bracket.second;  // the first time found on the far side
       }
     } else if (g0 <= 0.0 && g1 < 0.0) {

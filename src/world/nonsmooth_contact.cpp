@@ -185,8 +185,8 @@ std::optional<NonsmoothOutcome> NonsmoothContact::ending(const SubStep& step, do
 NonsmoothOutcome NonsmoothContact::advance(double t_end_s, long max_steps) {
   require_finite("nonsmooth advance time", t_end_s);
   if (max_steps < 0) {
-    throw InvalidArgument("max_steps", "nonsmooth advance: max_steps must be >= 0, got " +
-                                           std::to_string(max_steps));
+    throw InvalidArgument(
+        "max_steps", "nonsmooth advance: max_steps must be >= 0, got " + std::to_string(max_steps));
   }
   if (finished_) {
     if (t_end_s != finished_->time_s) {

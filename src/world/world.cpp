@@ -133,7 +133,7 @@ void World::sample_flight(std::size_t i, double t_s) {
 }
 
 AdvanceResult World::advance_to(double t_s, std::vector<WorldEvent>& events,
-                                 const WorkBudget& budget) {
+                                const WorkBudget& budget) {
   require_finite("time", t_s);
   if (t_s < time_) {
     throw InvalidArgument("time", "advance time " + format_value(t_s) +
@@ -184,7 +184,8 @@ AdvanceResult World::advance_to(double t_s, std::vector<WorldEvent>& events,
       records_[snap.stone] = snap.record;
       pending_.erase(std::remove_if(pending_.begin(), pending_.end(),
                                     [&](const WorldEvent& e) {
-                                      return e.stone == snap.stone && e.time_s > snap.hot.state_time_s;
+                                      return e.stone == snap.stone &&
+                                             e.time_s > snap.hot.state_time_s;
                                     }),
                      pending_.end());
       // The same steps as before up to the earlier time: no more work than it already took.

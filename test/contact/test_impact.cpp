@@ -11,9 +11,9 @@
 #include <random>
 
 #include "support/flight_reference.h"
+#include "virtual_go/common/validation.h"
 #include "virtual_go/contact/impact.h"
 #include "virtual_go/contact/time_of_impact.h"
-#include "virtual_go/common/validation.h"
 
 namespace vg = virtual_go;
 
@@ -142,6 +142,42 @@ TEST(Impact, RandomEccentricImpactsNeverGainEnergy) {
   EXPECT_LT(worst_un, 1e-12);
   EXPECT_GT(stuck, 1000);
   EXPECT_GT(rim, 3000);
+}
+
+// Issue 19: a contact velocity of 1e-300 m/s or with denormal components has a squared norm that
+// underflows; the slip integration then never finished. Now it is an impact like any other
+// (scaled by its largest component), and with the slip integration's budget spent the rest is
+// frictionless: in both cases no energy gain and no approach left.
+TEST(Impact, PhysicallyZeroSpeedsAndASpentBudgetNeverFailNorGainEnergy) {
+  Stone st;
+  std::mt19937 rng(19);
+  std::normal_distribution<double> normal;
+  int fallbacks = 0;
+  for (int i = 0; i < 400; ++i) {
+    const Eigen::Vector3d axis =
+        Eigen::Vector3d(normal(rng), normal(rng), normal(rng)).normalized();
+    const vgtest::Quat q = vgtest::axis_angle(0.5 * normal(rng) * axis);
+    const double scales[] = {1e-300, 4.9e-324, 1e-310, 1e-200, 1.0};
+    const double scale = scales[i % 5];
+    const Eigen::Vector3d w = 60.0 * Eigen::Vector3d(normal(rng), normal(rng), normal(rng));
+    const Eigen::Vector3d v(normal(rng), normal(rng), -std::abs(normal(rng)));
+    const Touch t = touching(st, q, scale * v, scale * w);
+    vg::ImpactOptions options;
+    if (i % 2) options.max_steps = 1 + i % 7;  // spent after a few steps: the fallback
+    vg::Impact imp;
+    ASSERT_NO_THROW(imp = vg::resolve_impact(st.model, t.state, t.point, Eigen::Vector3d::UnitZ(),
+                                             material(0.5, 0.1 * (i % 10)), kGravity, options))
+        << "impact " << i;
+    ASSERT_TRUE(imp.state.velocity_world.allFinite() &&
+                imp.state.angular_momentum_world.allFinite());
+    EXPECT_LE(st.energy(imp.state) - st.energy(t.state), 1e-13 * std::abs(st.energy(t.state)))
+        << "impact " << i;
+    if (scale == 1.0 && !imp.separating) {
+      EXPECT_GE(st.point_velocity(imp.state, t.point).z(), -1e-12) << "impact " << i;
+    }
+    fallbacks += imp.frictionless_fallback;
+  }
+  EXPECT_GT(fallbacks, 20);
 }
 
 TEST(Impact, FrictionlessElasticImpactsConserveEnergy) {

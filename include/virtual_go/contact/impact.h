@@ -21,9 +21,9 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
-#include "virtual_go/contact/material.h"
 #include "virtual_go/body/motion_model.h"
 #include "virtual_go/body/rigid_body_state.h"
+#include "virtual_go/contact/material.h"
 
 namespace virtual_go {
 
@@ -51,10 +51,10 @@ struct Impact {
   double normal_velocity_after_mps = 0.0;   // u_n+
   Eigen::Vector3d contact_velocity_before_world = Eigen::Vector3d::Zero();  // m/s
   Eigen::Vector3d contact_velocity_after_world = Eigen::Vector3d::Zero();   // m/s
-  bool separating = false;  // u_n- >= 0: no impulse, state unchanged
-  bool stuck = false;       // the contact point's slip ended (u_t = 0) and stayed so
-  bool sustained = false;   // Zeno cut-off applied: the contact stays (u_n+ = 0)
-  int slip_steps = 0;       // accepted steps of the slip integration
+  bool separating = false;             // u_n- >= 0: no impulse, state unchanged
+  bool stuck = false;                  // the contact point's slip ended (u_t = 0) and stayed so
+  bool sustained = false;              // Zeno cut-off applied: the contact stays (u_n+ = 0)
+  int slip_steps = 0;                  // accepted steps of the slip integration
   bool frictionless_fallback = false;  // the slip integration could not finish (ImpactOptions)
 };
 
