@@ -3,11 +3,12 @@
 // one btConvexHullShape per colour shared by its stones, one btRigidBody per stone, in one
 // btDiscreteDynamicsWorld (btDbvtBroadphase) stepped with stepSimulation(dt, 1, dt).
 // Sleeping is Bullet's deactivation, on by default: a body whose speeds stay below its sleeping
-// thresholds for gDeactivationTime (2 s) sleeps with its island (btRigidBody::setSleepingThresholds).
-// Every pair gets the scene's one material through Bullet's combination rules: restitution and
-// friction are the products of the two bodies' (btManifoldResult::calculateCombined*), so every
-// body, static or not, carries sqrt(e) and sqrt(mu); the combined rolling friction is
-// rolling_a mu_b + rolling_b mu_a, so every body carries l_r / (2 sqrt(mu)) (spinning alike).
+// thresholds for gDeactivationTime (2 s) sleeps with its island
+// (btRigidBody::setSleepingThresholds). Every pair gets the scene's one material through Bullet's
+// combination rules: restitution and friction are the products of the two bodies'
+// (btManifoldResult::calculateCombined*), so every body, static or not, carries sqrt(e) and
+// sqrt(mu); the combined rolling friction is rolling_a mu_b + rolling_b mu_a, so every body carries
+// l_r / (2 sqrt(mu)) (spinning alike).
 #include <btBulletDynamicsCommon.h>
 
 #include <memory>
@@ -63,8 +64,7 @@ class BulletMany : public ManyMethod {
       const Eigen::Vector3d half = s.board.half_extent_m();
       board_shape_ = std::make_unique<btBoxShape>(btVector3(half.x(), half.y(), half.z()));
       board_shape_->setMargin(kMargin);
-      table_shape_ =
-          std::make_unique<btStaticPlaneShape>(btVector3(0, 0, 1), s.board.table_z_m());
+      table_shape_ = std::make_unique<btStaticPlaneShape>(btVector3(0, 0, 1), s.board.table_z_m());
       statics_.push_back(make_static(board_shape_.get(), s.board.centre_world()));
       statics_.push_back(make_static(table_shape_.get(), Eigen::Vector3d::Zero()));
     }
@@ -76,9 +76,8 @@ class BulletMany : public ManyMethod {
       btConvexHullShape* shape =
           st.colour == Colour::black ? black_shape_.get() : white_shape_.get();
       const Eigen::Vector3d inertia = kMassScale * spec.principal_moments_body;
-      btRigidBody::btRigidBodyConstructionInfo ci(
-          kMassScale * spec.mass_kg, nullptr, shape,
-          btVector3(inertia.x(), inertia.y(), inertia.z()));
+      btRigidBody::btRigidBodyConstructionInfo ci(kMassScale * spec.mass_kg, nullptr, shape,
+                                                  btVector3(inertia.x(), inertia.y(), inertia.z()));
       ci.m_restitution = restitution_;
       ci.m_friction = friction_;
       ci.m_rollingFriction = rolling_;
@@ -114,9 +113,9 @@ class BulletMany : public ManyMethod {
         {"collision margin (m), mass x scale", num(kMargin) + ", x " + num(kMassScale),
          "wiki Scaling The World; flight benchmark (gyroscopic term)"},
         {"per body: restitution, friction, rolling, spinning (m)",
-         num(restitution_) + ", " + num(friction_) + ", " + num(rolling_) + ", " +
-             num(spinning_) + " (pairs: e " + num(m.restitution) + ", mu " + num(m.friction) +
-             ", l_r " + num(m.rolling_resistance_m) + ", l_s " + num(m.spinning_friction_m) + ")",
+         num(restitution_) + ", " + num(friction_) + ", " + num(rolling_) + ", " + num(spinning_) +
+             " (pairs: e " + num(m.restitution) + ", mu " + num(m.friction) + ", l_r " +
+             num(m.rolling_resistance_m) + ", l_s " + num(m.spinning_friction_m) + ")",
          "btManifoldResult::calculateCombined* (products; rolling a mu_b + rolling b mu_a)"},
         {"restitution velocity threshold (m/s); split impulse threshold (m)",
          num(info.m_restitutionVelocityThreshold) + "; " +

@@ -30,8 +30,8 @@ struct ManyScene {
   std::string name;
   std::string description;
   SceneKind kind = SceneKind::rest;
-  StoneSpec black;  // 22.2 mm slate, size 33
-  StoneSpec white;  // 21.9 mm shell, size 33
+  StoneSpec black;            // 22.2 mm slate, size 33
+  StoneSpec white;            // 21.9 mm shell, size 33
   bool board_enabled = true;  // false: no board and no table (stones free in the air)
   BoardSpec board;
   // One law for every pair (stone-board, stone-table, stone-stone): the core has no separate

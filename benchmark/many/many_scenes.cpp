@@ -103,8 +103,8 @@ ManyScene two_stone_collision(Colour target, double speed_mps, double impact_par
                               double dt_s) {
   ManyScene sc = base_scene();
   const bool head_on = impact_parameter_m == 0.0;
-  sc.name = std::string(head_on ? "head_on" : "oblique") + "_b" +
-            (target == Colour::black ? "b" : "w");
+  sc.name =
+      std::string(head_on ? "head_on" : "oblique") + "_b" + (target == Colour::black ? "b" : "w");
   sc.kind = SceneKind::collision;
   sc.description = std::string("black at ") + std::to_string(speed_mps) + " m/s into " +
                    (target == Colour::black ? "black" : "white") + " at rest";
@@ -118,10 +118,9 @@ ManyScene two_stone_collision(Colour target, double speed_mps, double impact_par
   const double x0 = -(std::sqrt(touch * touch - b * b) + gap_x);
   const Eigen::Vector3d zero = Eigen::Vector3d::Zero();
   const Eigen::Quaterniond flat = Eigen::Quaterniond::Identity();
-  sc.stones.push_back(make_stone_state(sc.black, Colour::black, Eigen::Vector3d(x0, 0.0, 0.0),
-                                       flat, Eigen::Vector3d(speed_mps, 0.0, 0.0), zero));
-  sc.stones.push_back(
-      make_stone_state(t, target, Eigen::Vector3d(0.0, b, 0.0), flat, zero, zero));
+  sc.stones.push_back(make_stone_state(sc.black, Colour::black, Eigen::Vector3d(x0, 0.0, 0.0), flat,
+                                       Eigen::Vector3d(speed_mps, 0.0, 0.0), zero));
+  sc.stones.push_back(make_stone_state(t, target, Eigen::Vector3d(0.0, b, 0.0), flat, zero, zero));
   // Long enough for both to move a stone width apart after the impact.
   sc.duration_s = 2.5 * dt_s + 3.0 * touch / speed_mps;
   return sc;
@@ -180,13 +179,12 @@ double lens_support(const StoneSpec& s, const Eigen::Vector3d& u_body) {
 double lens_overlap_m(const StoneSpec& a, const ContactSample& sa, const StoneSpec& b,
                       const ContactSample& sb) {
   const Eigen::Vector3d d = sb.position_world - sa.position_world;
-  const double reach = std::hypot(a.half_width_m, a.half_height_m) +
-                       std::hypot(b.half_width_m, b.half_height_m);
-  if (d.norm() >= reach) return d.norm() - reach;  // bounding spheres apart
+  const double reach =
+      std::hypot(a.half_width_m, a.half_height_m) + std::hypot(b.half_width_m, b.half_height_m);
+  if (d.norm() >= reach) return reach - d.norm();  // bounding spheres apart: negative
   const Eigen::Quaterniond qa = sa.orientation.normalized(), qb = sb.orientation.normalized();
   auto depth = [&](const Eigen::Vector3d& n) {
-    return lens_support(a, qa.conjugate() * n) + lens_support(b, qb.conjugate() * (-n)) -
-           n.dot(d);
+    return lens_support(a, qa.conjugate() * n) + lens_support(b, qb.conjugate() * (-n)) - n.dot(d);
   };
   // Directions by spherical angles; a grid first (the minimum of a smooth function of the
   // direction), then a pattern search from the best grid point.

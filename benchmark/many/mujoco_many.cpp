@@ -42,13 +42,16 @@ class MujocoMany : public ManyMethod {
     const SurfaceMaterial& mat = s.material;
     const double zeta = damping_ratio_for_restitution(mat.restitution);
     const std::size_t n = s.stones.size();
-    const long ncon = 24 * static_cast<long>(n) + 64;  // multiccd: several points per pair
+    // MuJoCo 2.2 allocates njmax x njmax matrices (efc_AR): the buffers are sized to what the
+    // scenes use (a resting stone makes one contact, 6 rows with condim 6) with room for twice
+    // that; a full buffer is reported as a failure.
+    const long ncon = 2 * static_cast<long>(n) + 32;
     std::ostringstream xml;
     xml.precision(17);
     const Eigen::Vector3d& g = s.gravity_world;
     xml << "<mujoco model=\"stones\">\n"
-        << "  <option timestep=\"" << dt << "\" gravity=\"" << g.x() << " " << g.y() << " "
-        << g.z() << "\" cone=\"elliptic\" noslip_iterations=\"10\">\n"
+        << "  <option timestep=\"" << dt << "\" gravity=\"" << g.x() << " " << g.y() << " " << g.z()
+        << "\" cone=\"elliptic\" noslip_iterations=\"10\">\n"
         << "    <flag multiccd=\"enable\"/>\n  </option>\n"
         << "  <size nconmax=\"" << ncon << "\" njmax=\"" << 6 * ncon << "\"/>\n  <asset>\n";
     for (const Colour c : {Colour::black, Colour::white}) {
@@ -76,8 +79,8 @@ class MujocoMany : public ManyMethod {
           << in.x() << " " << in.y() << " " << in.z() << "\"/>\n"
           << "      <geom type=\"mesh\" mesh=\"" << mesh << "\" priority=\"1\" condim=\"6\""
           << " friction=\"" << mat.friction << " " << mat.spinning_friction_m << " "
-          << mat.rolling_resistance_m << "\" solref=\"" << tuned_timeconst(dt, zeta) << " "
-          << zeta << "\" solimp=\"" << kTunedSolimp << "\"/>\n    </body>\n";
+          << mat.rolling_resistance_m << "\" solref=\"" << tuned_timeconst(dt, zeta) << " " << zeta
+          << "\" solimp=\"" << kTunedSolimp << "\"/>\n    </body>\n";
     }
     xml << "  </worldbody>\n</mujoco>\n";
     load(xml.str());
@@ -100,8 +103,8 @@ class MujocoMany : public ManyMethod {
     const mjtNum* gs = model_->geom_solref + 2 * geom;
     settings_ = {
         {"stepping",
-         "mj_step, timestep = dt, Euler, Newton solver, " +
-             std::to_string(model_->opt.iterations) + " iterations; elliptic cones, noslip " +
+         "mj_step, timestep = dt, Euler, Newton solver, " + std::to_string(model_->opt.iterations) +
+             " iterations; elliptic cones, noslip " +
              std::to_string(model_->opt.noslip_iterations) + " iterations; multiccd",
          "XML reference, option"},
         {"stone geoms",
@@ -114,8 +117,8 @@ class MujocoMany : public ManyMethod {
          std::to_string(model_->geom_condim[geom]) + "; " + num(mat.friction) + ", " +
              num(mat.spinning_friction_m) + ", " + num(mat.rolling_resistance_m),
          "Modeling, Contact parameters"},
-        {"solref (timeconst s, dampratio); solimp", num(gs[0]) + ", " + num(gs[1]) + "; " +
-                                                       kTunedSolimp,
+        {"solref (timeconst s, dampratio); solimp",
+         num(gs[0]) + ", " + num(gs[1]) + "; " + kTunedSolimp,
          "Modeling, Solver parameters and Restitution"},
         {"sleeping", "none: MuJoCo 2.2.2 has no sleeping (no such option or flag in mjModel)",
          "XML reference, option"},
@@ -171,7 +174,9 @@ class MujocoMany : public ManyMethod {
 
 }  // namespace
 
-void init_mujoco_many_messages() { mju_user_warning = [](const char*) {}; }
+void init_mujoco_many_messages() {
+  mju_user_warning = [](const char*) {};
+}
 
 std::unique_ptr<ManyMethod> make_mujoco_many() { return std::make_unique<MujocoMany>(); }
 

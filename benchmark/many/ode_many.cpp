@@ -47,8 +47,7 @@ ConvexData convex_of(const StoneSpec& spec) {
     const Eigen::Vector3d n = (b - a).cross(d - a).normalized();
     c.planes.insert(c.planes.end(), {n.x(), n.y(), n.z(), n.dot(a)});
     c.polygons.insert(c.polygons.end(), {3u, static_cast<unsigned>(t[0]),
-                                         static_cast<unsigned>(t[1]),
-                                         static_cast<unsigned>(t[2])});
+                                         static_cast<unsigned>(t[1]), static_cast<unsigned>(t[2])});
   }
   return c;
 }
@@ -130,8 +129,9 @@ class OdeMany : public ManyMethod {
              "), one step per dt; dHashSpace levels -6..1; at most " +
              std::to_string(kMaxContacts) + " contacts per pair",
          "ODE manual, World (Stepping Functions), Collision Detection (Spaces)"},
-        {"stone geoms", "dConvex of the lens tessellation (" +
-                            std::to_string(black_.points.size() / 3) + " points) per stone",
+        {"stone geoms",
+         "dConvex of the lens tessellation (" + std::to_string(black_.points.size() / 3) +
+             " points) per stone",
          "ODE manual, Convex Class"},
         {"world ERP, CFM; surface layer (m)",
          num(dWorldGetERP(world_)) + ", " + num(dWorldGetCFM(world_)) + "; " +
@@ -147,8 +147,7 @@ class OdeMany : public ManyMethod {
          num(dWorldGetAutoDisableLinearThreshold(world_)) + ", " +
              num(dWorldGetAutoDisableAngularThreshold(world_)) + ", " +
              std::to_string(dWorldGetAutoDisableSteps(world_)) + ", " +
-             num(dWorldGetAutoDisableTime(world_)) +
-             "; pairs of disabled bodies are not collided",
+             num(dWorldGetAutoDisableTime(world_)) + "; pairs of disabled bodies are not collided",
          "ODE manual, Automatic Enabling and Disabling"},
     };
   }

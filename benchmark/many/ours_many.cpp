@@ -47,9 +47,9 @@ class OursMany : public ManyMethod {
     for (std::size_t i = 0; i < s.stones.size(); ++i) {
       // The black stone's angular momentum for the same angular velocity (zero at rest).
       virtual_go::RigidBodyState st = s.stones[i].initial;
-      st.angular_momentum_world = virtual_go::with_angular_velocity_world(
-                                      model, st, s.stones[i].omega_world)
-                                      .angular_momentum_world;
+      st.angular_momentum_world =
+          virtual_go::with_angular_velocity_world(model, st, s.stones[i].omega_world)
+              .angular_momentum_world;
       states.push_back(st);
     }
     world_.reset();
@@ -61,11 +61,13 @@ class OursMany : public ManyMethod {
     world_->advance_to(0.0, events_);
     events_.clear();
     settings_ = {
-        {"stones", "one World; every stone with the black stone's lens and mass (World has one "
-                   "body for all stones yet)",
+        {"stones",
+         "one World; every stone with the black stone's lens and mass (World has one "
+         "body for all stones yet)",
          "include/virtual_go/world/world.h"},
-        {"rest", "exact: a stone set down flat rests at once; a resting stone is skipped by "
-                 "advance_to (no integration, no search), its pose frozen bit for bit",
+        {"rest",
+         "exact: a stone set down flat rests at once; a resting stone is skipped by "
+         "advance_to (no integration, no search), its pose frozen bit for bit",
          "docs/physics.md, \"World\""},
         {"sampling", "advance_to(k dt), then state(i)", "docs/physics.md, \"World\""},
     };
@@ -94,8 +96,7 @@ class OursMany : public ManyMethod {
   long work_done() const override {
     const virtual_go::WorldCounters& c = world_->counters();
     return c.flight_steps + c.contact_searches + c.contact_search_steps + c.impacts +
-           c.plane_contact_steps + c.plane_contact_rhs + c.nonsmooth_steps +
-           c.nonsmooth_impulses;
+           c.plane_contact_steps + c.plane_contact_rhs + c.nonsmooth_steps + c.nonsmooth_impulses;
   }
 
  private:
