@@ -121,8 +121,9 @@ ManyScene two_stone_collision(Colour target, double speed_mps, double impact_par
   sc.stones.push_back(make_stone_state(sc.black, Colour::black, Eigen::Vector3d(x0, 0.0, 0.0), flat,
                                        Eigen::Vector3d(speed_mps, 0.0, 0.0), zero));
   sc.stones.push_back(make_stone_state(t, target, Eigen::Vector3d(0.0, b, 0.0), flat, zero, zero));
-  // Long enough for both to move a stone width apart after the impact.
-  sc.duration_s = 2.5 * dt_s + 3.0 * touch / speed_mps;
+  // Long enough for both to move a stone width apart after the impact, and at least 30 steps
+  // (a soft contact at a coarse step lasts several steps).
+  sc.duration_s = 2.5 * dt_s + std::max(3.0 * touch / speed_mps, 30.0 * dt_s);
   return sc;
 }
 
