@@ -1,32 +1,35 @@
 #!/usr/bin/env bash
 # Benchmarks of virtual_go against Bullet, ODE and MuJoCo: the flight work-precision sweep, the
-# contact benchmark (a stone dropped, tossed, slid and laid on the board) and the stone_node
-# overhead. Installs what it needs (sudo when not root), builds benchmark/ in Release, runs
+# contact benchmark (a stone dropped, tossed, slid and laid on the board), the many-stone
+# benchmark (a board of resting stones, two-stone collisions, a stone thrown into a cluster) and
+# the stone_node overhead. Installs what it needs (sudo when not root), builds benchmark/ in Release, runs
 # everything and regenerates docs/benchmarks/. Not part of the test command.
 set -euo pipefail
 
 usage() {
   cat <<'EOF'
-usage: scripts/benchmark.sh [--quick] [--no-install] [--skip-node] [--flight-only | --contact-only]
-                            [--report-only] [--out DIR]
+usage: scripts/benchmark.sh [--quick] [--no-install] [--skip-node]
+                            [--flight-only | --contact-only | --many-only] [--report-only] [--out DIR]
 
 Installs libbullet-dev libode-dev libmujoco-dev libbenchmark-dev gnuplot (with sudo when not
 root), builds benchmark/ in Release into build_benchmark/ (or $VG_BENCH_BUILD), runs the flight
 work-precision benchmark (several minutes), then the contact benchmark (about half an hour on
-a shared 2-core machine), builds the package into build_catkin/ (or $VG_BUILD) if stone_node is
-not there yet and measures the node overhead (scripts/node_overhead.sh, about a minute), then
-writes into DIR (default docs/benchmarks/): README.md (flight tables, machine, date),
-results.csv, work_precision_*.png, headline.md, node_overhead.md, and contact.md (contact
-tables, settings of every engine, machine, date), contact_results.csv, contact_bounces.csv,
-contact_*.png, contact_headline.md.
+a shared 2-core machine), then the many-stone benchmark (about ten minutes), builds the package
+into build_catkin/ (or $VG_BUILD) if stone_node is not there yet and measures the node overhead
+(scripts/node_overhead.sh, about a minute), then writes into DIR (default docs/benchmarks/):
+README.md (flight tables, machine, date), results.csv, work_precision_*.png, headline.md,
+node_overhead.md, contact.md (contact tables, settings of every engine, machine, date),
+contact_results.csv, contact_bounces.csv, contact_*.png, contact_headline.md, and many.md
+(many-stone tables, settings of every engine, machine, date), many_results.csv, many_cost.png.
 
   --quick         dt only down to 2^-10 s and fewer repetitions (a smoke run, minutes -> seconds)
   --no-install    do not install packages (fail if something is missing)
   --skip-node     skip the node overhead measurement (keeps an existing node_overhead.md)
   --flight-only   only the flight benchmark (and the node overhead); contact files are kept
-  --contact-only  only the contact benchmark; flight files and node_overhead.md are kept
-  --report-only   rewrite DIR from the last run's raw results (build_benchmark/results and
-                  build_benchmark/contact_results)
+  --contact-only  only the contact benchmark; other files and node_overhead.md are kept
+  --many-only     only the many-stone benchmark; other files and node_overhead.md are kept
+  --report-only   rewrite DIR from the last run's raw results (build_benchmark/results,
+                  build_benchmark/contact_results and build_benchmark/many_results)
   --out DIR       output directory (default docs/benchmarks)
   -h, --help      this help
 EOF
@@ -42,6 +45,8 @@ install=1
 node=1
 flight=1
 contact=1
+many=1
+only=0
 out="$VG_ROOT/docs/benchmarks"
 while [ $# -gt 0 ]; do
   case "$1" in
@@ -50,21 +55,23 @@ while [ $# -gt 0 ]; do
     --no-install) install=0 ;;
     --skip-node) node=0 ;;
     --report-only) report_only=1; install=0; node=0 ;;
-    --flight-only) contact=0 ;;
-    --contact-only) flight=0; node=0 ;;
+    --flight-only) contact=0; many=0; only=$((only + 1)) ;;
+    --contact-only) flight=0; many=0; node=0; only=$((only + 1)) ;;
+    --many-only) flight=0; contact=0; node=0; only=$((only + 1)) ;;
     --out) out="$(mkdir -p "$2" && cd "$2" && pwd)"; shift ;;
     *) echo "benchmark.sh: unknown option $1 (see --help)" >&2; exit 2 ;;
   esac
   shift
 done
-if [ "$flight" = 0 ] && [ "$contact" = 0 ]; then
-  echo "benchmark.sh: --flight-only and --contact-only exclude each other (see --help)" >&2
+if [ "$only" -gt 1 ]; then
+  echo "benchmark.sh: --flight-only, --contact-only and --many-only exclude each other (see --help)" >&2
   exit 2
 fi
 
 build="${VG_BENCH_BUILD:-$VG_ROOT/build_benchmark}"
 raw="$build/results"
 contact_raw="$build/contact_results"
+many_raw="$build/many_results"
 if [ "$report_only" = 0 ]; then
 BENCH_PACKAGES=(build-essential cmake pkg-config libeigen3-dev libbullet-dev libode-dev
   libmujoco-dev libbenchmark-dev procps)
@@ -75,7 +82,7 @@ if [ "$install" = 1 ]; then
 fi
 export PATH="/usr/bin:$PATH"
 
-mkdir -p "$build" "$raw" "$contact_raw" "$out"
+mkdir -p "$build" "$raw" "$contact_raw" "$many_raw" "$out"
 echo "benchmark.sh: building benchmark/ (Release) in $build" >&2
 cmake -S "$VG_ROOT/benchmark" -B "$build" -DCMAKE_BUILD_TYPE=Release >"$build/configure.log" 2>&1 ||
   { cat "$build/configure.log" >&2; exit 1; }
@@ -111,9 +118,31 @@ peers="$(dpkg-query -W -f='${Package} ${Version}, ' libbullet-dev libode-dev lib
   2>/dev/null | sed 's/, $//')"
 echo "$date_utc|$cpu|$cores|$compiler|$load_before|$load_after|$peers" >"$contact_raw/machine.txt"
 fi
+
+if [ "$many" = 1 ]; then
+load_before="$(cut -d' ' -f1-3 /proc/loadavg)"
+date_utc="$(date -u '+%Y-%m-%d %H:%M UTC')"
+args=(--out "$many_raw")
+[ "$quick" = 1 ] && args+=(--quick)
+echo "benchmark.sh: running many_benchmark ${args[*]} (progress below)" >&2
+start_s="$(date +%s)"
+(cd "$build" && ./many_benchmark "${args[@]}")
+run_s="$(($(date +%s) - start_s))"
+load_after="$(cut -d' ' -f1-3 /proc/loadavg)"
+peers="$(dpkg-query -W -f='${Package} ${Version}, ' libbullet-dev libode-dev libmujoco-dev \
+  2>/dev/null | sed 's/, $//')"
+mode="full"
+[ "$quick" = 1 ] && mode="quick (--quick)"
+echo "$date_utc|$cpu|$cores|$compiler|$load_before|$load_after|$peers|$mode|$run_s" \
+  >"$many_raw/machine.txt"
+fi
 fi  # report_only
 if [ "$flight" = 1 ] && [ ! -f "$raw/machine.txt" ]; then
   echo "benchmark.sh: no flight results in $raw (run without --report-only first)" >&2
+  exit 1
+fi
+if [ "$many" = 1 ] && [ ! -f "$many_raw/machine.txt" ]; then
+  echo "benchmark.sh: no many-stone results in $many_raw (run without --report-only first)" >&2
   exit 1
 fi
 if [ "$contact" = 1 ] && [ ! -f "$contact_raw/machine.txt" ]; then
@@ -302,4 +331,41 @@ fi
 
 if [ "$contact" = 1 ]; then
   "$VG_ROOT/scripts/contact_report.sh" "$contact_raw" "$out"
+fi
+
+if [ "$many" = 1 ]; then
+  IFS='|' read -r date_utc cpu cores compiler load_before load_after peers mode run_s \
+    <"$many_raw/machine.txt"
+  cp "$many_raw/many_results.csv" "$out/many_results.csv"
+  gnuplot <<EOF
+set terminal pngcairo size 1000,700 font ",11" noenhanced
+set output "$out/many_cost.png"
+set logscale xy
+set format y "1e%L"
+set xlabel "resting stones N"
+set ylabel "cost per step / per advance_to over the last second (ns)"
+set title "virtual_go many-stone benchmark: resting stones at dt = 1/60 s"
+set key outside right top
+set grid
+plot for [i=0:3] "$many_raw/many_cost.dat" index i using 1:3 with linespoints pointsize 1.2 title columnheader(1)
+EOF
+  {
+    cat <<EOF
+# Many-stone benchmark
+
+Generated by \`scripts/benchmark.sh --many-only\` ($mode run, ${run_s} s) on **$date_utc**: $cpu,
+$cores cores (\`nproc\`), $compiler, Release build (-O3) of \`benchmark/\` (\`many_benchmark\`).
+Load average before/after the run: $load_before / $load_after (a shared machine: absolute
+timings are noisy). Peers: $peers.
+
+Files: [many_results.csv](many_results.csv) (every figure, long format), [many_cost.png](many_cost.png).
+
+EOF
+    cat "$VG_ROOT/benchmark/many/doc_measured.md"
+    printf '\n## Results\n\n![cost per step](many_cost.png)\n\n'
+    cat "$many_raw/many_tables.md"
+    printf '\n## Engine settings as run\n\n'
+    cat "$many_raw/many_settings.md"
+  } >"$out/many.md"
+  echo "benchmark.sh: wrote $out/many.md, many_results.csv, many_cost.png" >&2
 fi
