@@ -1,4 +1,5 @@
 // stone_node: the Go stone simulator as a ROS node (see stone_node --help).
+#include <ros/callback_queue.h>
 #include <ros/ros.h>
 
 #include <atomic>
@@ -66,7 +67,8 @@ int main(int argc, char** argv) {
     virtual_go::StoneNode node(nh, private_nh);
     // ros::spin() with the stop flag checked between callbacks (roscpp's own SIGINT handler
     // is replaced by on_sigint).
-    while (ros::ok() && !g_sigint) ros::getGlobalCallbackQueue()->callAvailable(ros::WallDuration(0.05));
+    while (ros::ok() && !g_sigint)
+      ros::getGlobalCallbackQueue()->callAvailable(ros::WallDuration(0.05));
   } catch (const virtual_go::ConfigError& e) {
     ROS_FATAL("stone_node: invalid parameter %s", e.what());
     code = 1;

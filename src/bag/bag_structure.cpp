@@ -70,8 +70,8 @@ class BagFile {
   std::uint64_t size() const { return size_; }
 
   [[noreturn]] void fail(const std::string& what) const {
-    throw BagReadError(path_ + " is corrupt: " + what + " (the file has " +
-                       std::to_string(size_) + " bytes)");
+    throw BagReadError(path_ + " is corrupt: " + what + " (the file has " + std::to_string(size_) +
+                       " bytes)");
   }
 
   // n bytes at pos; `what` names them in the error when they are not all in the file.
@@ -106,12 +106,14 @@ Record read_record(BagFile& file, std::uint64_t pos, const std::string& kind) {
   Record r;
   r.pos = pos;
   r.what = kind + " record at byte " + std::to_string(pos);  // kind: "index", "chunk info 1 of 3"
-  const std::uint32_t header_len = u32_at(file.read(pos, 4, "the header length of the " + r.what).data());
+  const std::uint32_t header_len =
+      u32_at(file.read(pos, 4, "the header length of the " + r.what).data());
   const std::string header = file.read(pos + 4, header_len, "the header of the " + r.what);
   const std::string why = parse_fields(header.data(), header.size(), r.fields);
   if (!why.empty()) file.fail("the header of the " + r.what + ": " + why);
   r.data_pos = pos + 8 + header_len;
-  r.data_len = u32_at(file.read(pos + 4 + header_len, 4, "the data length of the " + r.what).data());
+  r.data_len =
+      u32_at(file.read(pos + 4 + header_len, 4, "the data length of the " + r.what).data());
   return r;
 }
 
@@ -120,8 +122,8 @@ const std::string& field(BagFile& file, const Record& r, const std::string& name
   const auto it = r.fields.find(name);
   if (it == r.fields.end()) file.fail("the " + r.what + " has no '" + name + "' field");
   if (n != 0 && it->second.size() != n) {
-    file.fail("the " + r.what + "'s '" + name + "' field has " +
-              std::to_string(it->second.size()) + " bytes, expected " + std::to_string(n));
+    file.fail("the " + r.what + "'s '" + name + "' field has " + std::to_string(it->second.size()) +
+              " bytes, expected " + std::to_string(n));
   }
   return it->second;
 }
@@ -172,8 +174,7 @@ Chunk read_chunk_header(BagFile& file, std::uint64_t pos, const std::string& fro
   }
   if (c.size > kMaxChunkBytes) {
     file.fail("the " + r.what + " declares " + std::to_string(c.size) +
-              " uncompressed bytes, over bag_report's limit of " +
-              std::to_string(kMaxChunkBytes));
+              " uncompressed bytes, over bag_report's limit of " + std::to_string(kMaxChunkBytes));
   }
   return c;
 }
@@ -221,8 +222,8 @@ std::string message_problem(const std::string& chunk, std::uint32_t offset) {
     const std::uint32_t header_len = u32_at(chunk.data() + at);
     if (header_len > size - at - 8) {
       return "the record at offset " + std::to_string(at) + " declares a " +
-             std::to_string(header_len) + "-byte header, past the chunk's " +
-             std::to_string(size) + " bytes";
+             std::to_string(header_len) + "-byte header, past the chunk's " + std::to_string(size) +
+             " bytes";
     }
     Fields fields;
     const std::string why = parse_fields(chunk.data() + at + 4, header_len, fields);
@@ -255,10 +256,10 @@ std::string message_problem(const std::string& chunk, std::uint32_t offset) {
 BagStructure check_bag_structure(const std::string& path) {
   BagFile file(path);
   const std::size_t version_len = std::strlen(kVersionLine);
-  if (file.size() < version_len ||
-      file.read(0, version_len, "the version line") != kVersionLine) {
-    throw BagReadError(path + " does not start with \"#ROSBAG V2.0\": not a rosbag of format "
-                              "2.0 (the only one bag_report reads)");
+  if (file.size() < version_len || file.read(0, version_len, "the version line") != kVersionLine) {
+    throw BagReadError(path +
+                       " does not start with \"#ROSBAG V2.0\": not a rosbag of format "
+                       "2.0 (the only one bag_report reads)");
   }
 
   const Record header = read_record(file, version_len, "file header");
@@ -283,13 +284,15 @@ BagStructure check_bag_structure(const std::string& path) {
   std::map<std::uint32_t, std::string> topics;
   std::uint64_t at = index_pos;
   for (std::uint32_t i = 0; i < connection_count; ++i) {
-    const Record r = read_record(file, at, "connection " + std::to_string(i + 1) + " of " +
-                                               std::to_string(connection_count));
+    const Record r = read_record(
+        file, at,
+        "connection " + std::to_string(i + 1) + " of " + std::to_string(connection_count));
     expect_op(file, r, kOpConnection);
     const std::uint32_t id = field_u32(file, r, "conn");
     const std::string topic = field(file, r, "topic", 0);
     // The data is the connection's own header: a length and fields.
-    const std::string data = file.read(r.data_pos, r.data_len, "the connection header of the " + r.what);
+    const std::string data =
+        file.read(r.data_pos, r.data_len, "the connection header of the " + r.what);
     Fields connection_fields;
     const std::string why = parse_fields(data.data(), data.size(), connection_fields);
     if (!why.empty()) file.fail("the connection header of the " + r.what + ": " + why);
@@ -304,8 +307,8 @@ BagStructure check_bag_structure(const std::string& path) {
   };
   std::vector<ChunkInfo> infos;
   for (std::uint32_t i = 0; i < chunk_count; ++i) {
-    const Record r = read_record(file, at, "chunk info " + std::to_string(i + 1) + " of " +
-                                               std::to_string(chunk_count));
+    const Record r = read_record(
+        file, at, "chunk info " + std::to_string(i + 1) + " of " + std::to_string(chunk_count));
     expect_op(file, r, kOpChunkInfo);
     if (field_u32(file, r, "ver") != 1) file.fail("the " + r.what + " is not version 1");
     ChunkInfo info;

@@ -161,8 +161,7 @@ void StoneNode::on_timer(const ros::TimerEvent&) {
                       "go on, and past %.1f s behind the stone skips ahead (a time_jump event)",
                       to_seconds(result.behind_ns),
                       1e-6 * static_cast<double>(update_allowance(sim_.config().rate_hz).count()),
-                      static_cast<long long>(result.steps_deferred),
-                      to_seconds(sim_.max_lag_ns()));
+                      static_cast<long long>(result.steps_deferred), to_seconds(sim_.max_lag_ns()));
   }
   if (!result.error.empty()) {
     ROS_ERROR(
@@ -173,9 +172,10 @@ void StoneNode::on_timer(const ros::TimerEvent&) {
   try {
     for (const SegmentEvent& event : result.events) {
       if (event.reason == EventReason::time_jump && event.detail == "physics_behind") {
-        ROS_WARN("stone_node: the physics fell more than %.1f s behind ROS time; the stone "
-                 "skips ahead to %.9f s and continues from its state",
-                 to_seconds(sim_.max_lag_ns()), to_seconds(event.stamp_ns));
+        ROS_WARN(
+            "stone_node: the physics fell more than %.1f s behind ROS time; the stone "
+            "skips ahead to %.9f s and continues from its state",
+            to_seconds(sim_.max_lag_ns()), to_seconds(event.stamp_ns));
       } else if (event.reason == EventReason::time_jump) {
         ROS_WARN("stone_node: ROS time jumped to %.9f s; the stone continues from there",
                  to_seconds(event.stamp_ns));

@@ -252,8 +252,7 @@ UpdateResult StoneSimulation::update(std::int64_t now_ns, WorkBudget& budget) no
   return result;
 }
 
-void StoneSimulation::advance_to(std::int64_t now_ns, WorkBudget& budget,
-                                 UpdateResult& result) {
+void StoneSimulation::advance_to(std::int64_t now_ns, WorkBudget& budget, UpdateResult& result) {
   const SimClock::Plan plan = clock_.plan(now_ns);
   switch (plan.action) {
     case SimClock::Action::wait:
@@ -354,7 +353,8 @@ void StoneSimulation::step(UpdateResult& result) {
   output_stale_ = applied.empty();
   if (!applied.empty()) output_ = applied.back().output;
   pending_.clear();
-  if (!applied.empty()) flight_cache_.invalidate();  // the integrator must not continue the old motion
+  if (!applied.empty())
+    flight_cache_.invalidate();  // the integrator must not continue the old motion
   for (const Applied& a : applied) announce(a.reason, next_ns, a.state, a.output, result);
 }
 

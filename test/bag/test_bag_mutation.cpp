@@ -199,8 +199,8 @@ TEST(BagMutation, SeededMutationsNeverCrash) {
         bytes[pick(lo, bytes.size())] = static_cast<char>(pick(0, 256));
         break;
       case 2: {  // a 32-bit word set to an extreme
-        const std::uint32_t values[] = {0u, 1u, 0x7fffffffu, 0xffffffffu, 0x01000000u,
-                                        static_cast<std::uint32_t>(rng())};
+        const std::uint32_t values[] = {
+            0u, 1u, 0x7fffffffu, 0xffffffffu, 0x01000000u, static_cast<std::uint32_t>(rng())};
         const std::uint32_t v = values[pick(0, 6)];
         std::memcpy(&bytes[pick(lo, bytes.size() - 4)], &v, 4);
         break;
