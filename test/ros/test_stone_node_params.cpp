@@ -58,11 +58,6 @@ TEST(StoneNodeParams, InvalidParametersAreFatalAndNamed) {
       {"orientation", "_initial/orientation:=[0.0,0.0,0.0,0.0]", "~initial/orientation"},
       {"omega", "_initial/angular_velocity:=[0.0,0.0,1.0e6]", "~initial/angular_velocity"},
       {"type", "_dt:=fast", "~dt: must be a number, got 'fast'"},
-      // issue 19: the string "true" printed unquoted read as the boolean it was refused for.
-      {"type_string_bool", "_board/enabled:=\"'true'\"",
-       "~board/enabled: must be true or false, got 'true'"},
-      {"type_list", "_initial/position:=\"[0.0, 'a', 1]\"",
-       "~initial/position: must be a list of 3 numbers, got [0.0, 'a', 1]"},
       // issue 8: blamed on ~stone/size.
       {"width_small", "_stone/width:=0.005",
        "~stone/width: stone width 0.005 m must be more than the height 0.0092 m"},
@@ -122,6 +117,29 @@ TEST(StoneNodeParams, AbsurdVectorsAreFatalWithTheirLimit) {
   }
 }
 
+// issue 19: the string "true" was printed unquoted, reading as the boolean it was refused for.
+// Strings are quoted, also inside a list. (Set on the master: a _param:= argument cannot give
+// the string "true".)
+TEST(StoneNodeParams, TypeErrorsQuoteStrings) {
+  ros::param::set("/bad_type_string_bool/board/enabled", std::string("true"));
+  Outcome out = run("__name:=bad_type_string_bool");
+  ros::param::del("/bad_type_string_bool/board/enabled");
+  EXPECT_NE(out.exit_code, 0) << out.output;
+  EXPECT_NE(out.output.find("~board/enabled: must be true or false, got 'true'"), std::string::npos)
+      << out.output;
+  XmlRpc::XmlRpcValue list;
+  list[0] = 0.5;
+  list[1] = std::string("a");
+  list[2] = 1;
+  ros::param::set("/bad_type_list/initial/position", list);
+  out = run("__name:=bad_type_list");
+  ros::param::del("/bad_type_list/initial/position");
+  EXPECT_NE(out.exit_code, 0) << out.output;
+  EXPECT_NE(out.output.find("~initial/position: must be a list of 3 numbers, got [0.5, 'a', 1]"),
+            std::string::npos)
+      << out.output;
+}
+
 TEST(StoneNodeParams, HelpNeedsNoMaster) {
   for (const char* flag : {"--help", "-h"}) {
     // A master URI where nothing listens: --help must not try to connect.
@@ -154,7 +172,7 @@ TEST(StoneNodeParams, HelpColumnsLineUp) {
                          line.find_first_not_of(' ', next_end) - next == 8;
     (is_unit ? unit_columns : help_columns).insert(next);
   }
-  EXPECT_GT(parameters, 40u);
+  EXPECT_GT(parameters, 30u);
   ASSERT_EQ(unit_columns.size(), 1u) << out.output;
   EXPECT_GT(*unit_columns.begin(), longest) << "a name runs into the unit column";
   for (std::size_t c : help_columns) EXPECT_EQ(c, *unit_columns.begin() + 8) << out.output;
