@@ -172,7 +172,8 @@ void StoneNode::on_timer(const ros::TimerEvent&) {
   try {
     for (const SegmentEvent& event : result.events) {
       if (event.reason == EventReason::time_jump && event.detail == "physics_behind") {
-        ROS_WARN(
+        ROS_WARN_THROTTLE(
+            kBehindWarningPeriodS,
             "stone_node: the physics fell more than %.1f s behind ROS time; the stone "
             "skips ahead to %.9f s and continues from its state",
             to_seconds(sim_.max_lag_ns()), to_seconds(event.stamp_ns));
