@@ -9,6 +9,7 @@ add_library(virtual_go_bag_report
   src/bag/thresholds.cpp
   src/bag/options.cpp
   src/bag/report.cpp
+  src/bag/bag_structure.cpp
   src/bag/bag_reader.cpp)
 # ROS's headers and the generated messages' come from this folder's include_directories
 # (above; generate_messages() adds the devel space's include folder): exported PUBLIC they would

@@ -19,6 +19,7 @@
 #include <set>
 #include <sstream>
 
+#include "virtual_go/bag/bag_structure.h"
 #include "virtual_go/bag/message_check.h"
 #include "virtual_go/common/formatting.h"
 #include "virtual_go/common/sim_time.h"
@@ -90,8 +91,8 @@ constexpr std::size_t kCorruptNamed = 5;
 
 class Reader {
  public:
-  Reader(Recording& out, const std::string& node_namespace)
-      : out_(out), ns_(normalise_namespace(node_namespace)) {}
+  Reader(Recording& out, const std::string& node_namespace, const BagStructure& structure)
+      : out_(out), ns_(normalise_namespace(node_namespace)), structure_(structure) {}
 
   void resolve_topics(const std::vector<const rosbag::ConnectionInfo*>& connections) {
     for (const rosbag::ConnectionInfo* c : connections) {
@@ -109,6 +110,12 @@ class Reader {
   }
 
   void read(const rosbag::MessageInstance& m) {
+    // The index says where the message is; check_bag_structure found no message there, and
+    // rosbag would read outside its chunk.
+    if (structure_.bad_messages.count({m.getTopic(), to_ns(m.getTime())}) > 0) {
+      ++bad_index_skipped_;
+      return;
+    }
     ++out_.message_count;
     const std::string& topic = m.getTopic();
     const std::string& type = m.getDataType();
@@ -145,6 +152,14 @@ class Reader {
   }
 
   void finish() {
+    if (structure_.bad_entry_count > 0) {
+      for (const std::string& why : structure_.bad_entry_reasons) {
+        out_.problems.push_back("an index entry points at no message and was skipped: " + why);
+      }
+      out_.problems.push_back(std::to_string(structure_.bad_entry_count) +
+                              " index entries point at no message (" +
+                              std::to_string(bad_index_skipped_) + " messages skipped)");
+    }
     if (corrupt_ > kCorruptNamed) {
       out_.problems.push_back(std::to_string(corrupt_) + " corrupt messages were skipped in all (" +
                               std::to_string(kCorruptNamed) + " named above)");
@@ -295,6 +310,8 @@ class Reader {
 
   Recording& out_;
   std::string ns_;
+  const BagStructure& structure_;
+  std::size_t bad_index_skipped_ = 0;
   std::vector<std::uint8_t> bytes_;  // the current message, serialized
   std::size_t corrupt_ = 0;
   std::string info_topic_, pose_topic_;
@@ -314,6 +331,8 @@ Recording read_recording(const std::string& path, const std::string& node_namesp
   // rosbag and cpp_common log damage through console_bridge on their way to throwing; the
   // exception is reported here in one line, so their multi-line messages are noise.
   console_bridge::setLogLevel(console_bridge::CONSOLE_BRIDGE_LOG_NONE);
+  // rosbag trusts every length and offset in the file; they are checked first.
+  const BagStructure structure = check_bag_structure(path);
 
   Recording out;
   out.path = path;
@@ -330,7 +349,7 @@ Recording read_recording(const std::string& path, const std::string& node_namesp
     throw BagReadError("cannot read " + path + " as a rosbag (truncated or corrupt?): " + e.what());
   }
 
-  Reader reader(out, node_namespace);
+  Reader reader(out, node_namespace, structure);
   try {
     rosbag::View view(bag);
     reader.resolve_topics(view.getConnections());

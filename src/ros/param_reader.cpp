@@ -3,14 +3,26 @@
 #include <XmlRpcValue.h>
 
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "virtual_go/common/formatting.h"
 
 namespace virtual_go {
 namespace {
 
-// The value as the parameter server holds it, cut short: it comes from the user.
+// The value as the parameter server holds it, cut short: it comes from the user. A string is
+// quoted, so the string "true" does not read as the boolean true; a list shows its elements.
 std::string describe(XmlRpc::XmlRpcValue& value) {
+  if (value.getType() == XmlRpc::XmlRpcValue::TypeString) {
+    return quote_user_text(static_cast<std::string>(value));
+  }
+  if (value.getType() == XmlRpc::XmlRpcValue::TypeArray) {
+    std::vector<std::string> elements;
+    for (int i = 0; i < value.size() && i < 8; ++i) elements.push_back(describe(value[i]));
+    if (value.size() > 8) elements.push_back("... (" + std::to_string(value.size()) + " elements)");
+    return "[" + join(elements, ", ") + "]";
+  }
   std::ostringstream out;
   value.write(out);
   return cut_user_text(out.str());

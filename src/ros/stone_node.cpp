@@ -20,6 +20,7 @@ namespace {
 constexpr double kMarkerPeriodS = 1.0;                 // wall time between republished markers
 constexpr std::int64_t kClockPatienceNs = 3000000000;  // ROS time still this long: say so
 constexpr double kClockWatchPeriodS = 0.5;             // wall time between looks at the clock
+constexpr double kBehindWarningPeriodS = 5.0;          // at most one "falls behind" warning
 
 Eigen::Vector3d to_eigen(const geometry_msgs::Vector3& v) {
   Eigen::Vector3d out;
@@ -147,9 +148,21 @@ StoneNode::StoneNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_n
 }
 
 void StoneNode::on_timer(const ros::TimerEvent&) {
-  // update() never throws; a failure comes back once in result.error, with its cause.
+  // update() never throws; a failure comes back once in result.error, with its cause. It works
+  // at most half a tick (update_allowance) plus one step, so services and timers keep being
+  // served however slow the physics is.
   const std::int64_t now_ns = static_cast<std::int64_t>(ros::Time::now().toNSec());
-  const UpdateResult result = sim_.update(now_ns);
+  DeadlineBudget budget(update_allowance(sim_.config().rate_hz));
+  const UpdateResult result = sim_.update(now_ns, budget);
+  if (result.steps_deferred > 0) {
+    ROS_WARN_THROTTLE(kBehindWarningPeriodS,
+                      "stone_node: the physics falls behind ROS time: %.3f s behind after a tick's "
+                      "%.1f ms of work (%lld steps left for the next tick); topics and services "
+                      "go on, and past %.1f s behind the stone skips ahead (a time_jump event)",
+                      to_seconds(result.behind_ns),
+                      1e-6 * static_cast<double>(update_allowance(sim_.config().rate_hz).count()),
+                      static_cast<long long>(result.steps_deferred), to_seconds(sim_.max_lag_ns()));
+  }
   if (!result.error.empty()) {
     ROS_ERROR(
         "stone_node: %s; the state is held and nothing is published until ~reset or "
@@ -158,7 +171,13 @@ void StoneNode::on_timer(const ros::TimerEvent&) {
   }
   try {
     for (const SegmentEvent& event : result.events) {
-      if (event.reason == EventReason::time_jump) {
+      if (event.reason == EventReason::time_jump && event.detail == "physics_behind") {
+        ROS_WARN_THROTTLE(
+            kBehindWarningPeriodS,
+            "stone_node: the physics fell more than %.1f s behind ROS time; the stone "
+            "skips ahead to %.9f s and continues from its state",
+            to_seconds(sim_.max_lag_ns()), to_seconds(event.stamp_ns));
+      } else if (event.reason == EventReason::time_jump) {
         ROS_WARN("stone_node: ROS time jumped to %.9f s; the stone continues from there",
                  to_seconds(event.stamp_ns));
       }

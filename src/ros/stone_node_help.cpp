@@ -1,5 +1,6 @@
 #include "virtual_go/ros/stone_node_help.h"
 
+#include <algorithm>
 #include <iomanip>
 #include <sstream>
 #include <vector>
@@ -32,10 +33,12 @@ std::string reason_lines() {
   return out;
 }
 
-// One parameter: name and unit in columns, then the help and default wrapped at word
-// boundaries to 100 columns (the default is never split).
-std::string parameter_line(const ParameterInfo& p) {
-  constexpr std::size_t kIndent = 37, kWidth = 100;
+// One parameter: name (in a column name_width wide, the longest name's) and unit in columns,
+// then the help and default wrapped at word boundaries to 100 columns (the default is never
+// split).
+std::string parameter_line(const ParameterInfo& p, std::size_t name_width) {
+  constexpr std::size_t kUnitWidth = 7, kWidth = 100;
+  const std::size_t indent = 2 + name_width + 1 + kUnitWidth + 1;
   std::vector<std::string> words;
   std::istringstream help(p.help);
   for (std::string word; help >> word;) words.push_back(word);
@@ -44,12 +47,13 @@ std::string parameter_line(const ParameterInfo& p) {
     words.push_back("default " + p.default_text);
   }
   std::ostringstream out;
-  out << "  " << std::left << std::setw(26) << "~" + p.name << " " << std::setw(7) << p.unit << " ";
-  std::size_t column = kIndent;
+  out << "  " << std::left << std::setw(static_cast<int>(name_width)) << "~" + p.name << " "
+      << std::setw(static_cast<int>(kUnitWidth)) << p.unit << " ";
+  std::size_t column = indent;
   for (std::size_t i = 0; i < words.size(); ++i) {
     if (i > 0 && column + 1 + words[i].size() > kWidth) {
-      out << "\n" << std::string(kIndent, ' ');
-      column = kIndent;
+      out << "\n" << std::string(indent, ' ');
+      column = indent;
     } else if (i > 0) {
       out << " ";
       ++column;
@@ -103,7 +107,11 @@ Services (changes take effect at the next physics step, which starts a new segme
 
 Parameters (name, unit, meaning; default):
 )";
-  for (const ParameterInfo& p : stone_parameters()) out << parameter_line(p);
+  std::size_t name_width = 0;
+  for (const ParameterInfo& p : stone_parameters()) {
+    name_width = std::max(name_width, p.name.size() + 1);  // with the "~"
+  }
+  for (const ParameterInfo& p : stone_parameters()) out << parameter_line(p, name_width);
   out << R"(
 Example (integers are fine for float64 fields; write exponents as 1.0e+9, since YAML reads
 1e9 as a string, which rosservice refuses):

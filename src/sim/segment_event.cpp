@@ -22,6 +22,7 @@ const std::vector<std::pair<EventReason, std::string>>& reasons() {
       {EventReason::lift_off, "lift_off"},
       {EventReason::rest, "rest"},
       {EventReason::wake, "wake"},
+      {EventReason::held, "held"},
   };
   return table;
 }

@@ -75,9 +75,6 @@ auto named(const std::string& param, Lookup&& lookup) {
   }
 }
 
-// Largest rolling-resistance or spinning-friction length: far beyond a stone's size.
-constexpr double kMaxContactLengthM = 1.0;
-
 void check_between(const std::string& param, double value, double lowest, double highest,
                    const std::string& unit) {
   if (!(value >= lowest && value <= highest)) {  // also refuses NaN

@@ -1,7 +1,10 @@
 #include "virtual_go/sim/stone_parameters.h"
 
+#include <cmath>
+
 #include "virtual_go/common/formatting.h"
 #include "virtual_go/flight/integrator_registry.h"
+#include "virtual_go/go/board.h"
 #include "virtual_go/go/stone.h"
 
 namespace virtual_go {
@@ -44,6 +47,15 @@ std::string value_text(const std::string* v) { return *v; }
 std::string value_text(const Eigen::Vector3d* v) { return list_text(*v); }
 std::string value_text(const Eigen::Vector4d* v) { return list_text(*v); }
 
+// The grid the board's top face must hold: "19-line grid (0.396 x 0.4266 m)".
+std::string grid_text() {
+  const BoardGeometry b;
+  // To 1e-6 m: (19 - 1) * 0.022 is 0.39599999999999996 in binary.
+  auto mm_rounded = [](double m) { return format_value(std::round(m * 1e6) / 1e6); };
+  return std::to_string(b.lines) + "-line grid (" + mm_rounded((b.lines - 1) * b.spacing_x_m) +
+         " x " + mm_rounded((b.lines - 1) * b.spacing_y_m) + ")";
+}
+
 }  // namespace
 
 std::vector<BoundParameter> bind_parameters(StoneConfig& c) {
@@ -65,12 +77,17 @@ std::vector<BoundParameter> bind_parameters(StoneConfig& c) {
       {{"stone/size", "", default_size,
         "Japanese size number " + size_number_text() + "; sets the height"},
        &c.stone.size_number},
-      {{"stone/width", "m", "", "lens diameter"}, &c.stone.width},
+      {{"stone/width", "m", "",
+        "lens diameter, between ~min_width and ~max_width and more than the height"},
+       &c.stone.width},
       {{"stone/height", "m", "", "lens thickness; overrides ~stone/size"}, &c.stone.height},
       {{"stone/material", "", "", one_of(material_names()) + "; sets the density"},
        &c.stone.material},
       {{"stone/density", "kg/m^3", "", "overrides the material"}, &c.stone.density},
-      {{"stone/mass", "kg", "", "overrides density and material"}, &c.stone.mass},
+      {{"stone/mass", "kg", "",
+        "overrides density and material; the mass, given or not, between ~min_mass and "
+        "~max_mass"},
+       &c.stone.mass},
       {{"stone/color", "", "", one_of(stone_colors()) + " (the marker)"}, &c.color},
       {{"initial/position", "m", "", "[x, y, z], world frame"}, &c.initial_position_world},
       {{"initial/orientation", "", "", "[x, y, z, w], body -> world, normalised"},
@@ -105,18 +122,23 @@ std::vector<BoundParameter> bind_parameters(StoneConfig& c) {
       {{"max_width", "m", "", "largest ~stone/width; at most " + format_limit(kMaxWidthCap)},
        &c.max_width},
       {{"auto_reset_period", "s", "",
-        "reset when a segment is this old; 0 = never, else longer than ~dt"},
+        "reset when a segment is this old; 0 = never, else longer than ~dt and at most " +
+            format_limit(kMaxAutoResetPeriodS)},
        &c.auto_reset_period_s},
       {{"auto_reset_after_rest", "s", "",
         "with the board: reset once the stone has rested this long; 0 = never, else longer "
-        "than ~dt"},
+        "than ~dt and at most " +
+            format_limit(kMaxAutoResetPeriodS)},
        &c.auto_reset_after_rest_s},
       // The board and the contact laws (docs/physics.md, "World", "Contact materials").
       {{"board/enabled", "", "",
         "true: a Go board (top face at z = 0, centred on the origin) on a table; needs "
         "~integrator exact"},
        &c.board_enabled},
-      {{"board/size", "m", "", "[x, y, thickness] of the board; the table is at z = -thickness"},
+      {{"board/size", "m", "",
+        "[x, y, thickness] of the board, each positive and at most " +
+            format_value(kMaxBoardSizeM) + ", x and y at least the " + grid_text() +
+            "; the table is at z = -thickness"},
        &c.board_size_m},
       {{"contact/board/restitution", "", "",
         "stone on board: Stronge's energetic coefficient e*, 0 to 1 (unmeasured placeholder)"},
@@ -126,12 +148,12 @@ std::vector<BoundParameter> bind_parameters(StoneConfig& c) {
             " (unmeasured placeholder)"},
        &c.board_material.friction},
       {{"contact/board/rolling_resistance", "m", "",
-        "stone on board: rolling couple at most this times the normal force (unmeasured "
-        "placeholder)"},
+        "stone on board: rolling couple at most this times the normal force, 0 to " +
+            format_value(kMaxContactLengthM) + " (unmeasured placeholder)"},
        &c.board_material.rolling_resistance_m},
       {{"contact/board/spinning_friction", "m", "",
-        "stone on board: spinning couple at most this times the normal force (unmeasured "
-        "placeholder)"},
+        "stone on board: spinning couple at most this times the normal force, 0 to " +
+            format_value(kMaxContactLengthM) + " (unmeasured placeholder)"},
        &c.board_material.spinning_friction_m},
       {{"contact/table/restitution", "", "", "stone on table: as ~contact/board/restitution"},
        &c.table_material.restitution},
@@ -144,7 +166,7 @@ std::vector<BoundParameter> bind_parameters(StoneConfig& c) {
         "stone on table: as ~contact/board/spinning_friction"},
        &c.table_material.spinning_friction_m},
       {{"contact/zeno_height", "m", "",
-        "rebound height below which bouncing ends in sustained contact; at most " +
+        "rebound height below which bouncing ends in sustained contact; positive and at most " +
             format_value(kMaxNodeZenoHeightM)},
        &c.zeno_height_m},
       {{"world_frame", "", "", "tf frame of the world"}, &c.world_frame},

@@ -178,14 +178,21 @@ void StoneSimulation::replace_state(const RigidBodyState& state) {
 
 void StoneSimulation::begin_segment(EventReason reason, std::int64_t stamp_ns,
                                     UpdateResult& result) {
+  announce(reason, stamp_ns, state_, output_, result);
+}
+
+void StoneSimulation::announce(EventReason reason, std::int64_t stamp_ns,
+                               const RigidBodyState& state, const StateOutput& output,
+                               UpdateResult& result) {
   if (reason != EventReason::start) ++segment_;
-  segment_start_ns_ = stamp_ns;
+  if (reason != EventReason::held) segment_start_ns_ = stamp_ns;
   SegmentEvent event;
   event.stamp_ns = stamp_ns;
   event.segment = segment_;
   event.reason = reason;
-  event.state = state_;
-  event.output = output_;
+  event.state = state;
+  event.output = output;
+  if (reason == EventReason::held) event.detail = failure_;
   result.events.push_back(std::move(event));
 }
 
@@ -217,14 +224,26 @@ void StoneSimulation::hold(const std::string& cause, UpdateResult& result) {
   flight_cache_.invalidate();  // it may have moved on with the step that failed
   result.error = failure;
   if (!result.advanced) result.stamp_ns = clock_.time_ns();
+  // Announced on ~events too: the state stays the last one published (at the clock's time),
+  // with the cause in detail. A state whose outputs are not finite is not announced.
+  try {
+    announce(EventReason::held, clock_.time_ns(), state_,
+             state_output(checked_.setup.model, state_), result);
+  } catch (const std::exception&) {
+  }
 }
 
 UpdateResult StoneSimulation::update(std::int64_t now_ns) noexcept {
+  UnlimitedBudget unlimited;
+  return update(now_ns, unlimited);
+}
+
+UpdateResult StoneSimulation::update(std::int64_t now_ns, WorkBudget& budget) noexcept {
   UpdateResult result;
   // Whatever fails (a step, a change, an output that would not be finite) holds the state:
   // nothing leaves this function, so no input can stop the node.
   try {
-    advance_to(now_ns, result);
+    advance_to(now_ns, budget, result);
   } catch (const std::exception& e) {
     hold(e.what(), result);
   } catch (...) {
@@ -233,7 +252,7 @@ UpdateResult StoneSimulation::update(std::int64_t now_ns) noexcept {
   return result;
 }
 
-void StoneSimulation::advance_to(std::int64_t now_ns, UpdateResult& result) {
+void StoneSimulation::advance_to(std::int64_t now_ns, WorkBudget& budget, UpdateResult& result) {
   const SimClock::Plan plan = clock_.plan(now_ns);
   switch (plan.action) {
     case SimClock::Action::wait:
@@ -254,10 +273,21 @@ void StoneSimulation::advance_to(std::int64_t now_ns, UpdateResult& result) {
       // publishing it would present the stale state as new.
       if (held_) return;
       begin_segment(EventReason::time_jump, now_ns, result);
+      // Forward after updates the budget cut short: the physics, not ROS time, is to blame.
+      if (behind_ && plan.action == SimClock::Action::jump_forward) {
+        result.events.back().detail = "physics_behind";
+      }
+      behind_ = false;
       restart_world(now_ns, result);
       break;
     case SimClock::Action::advance:
       for (std::int64_t i = 0; i < plan.steps; ++i) {
+        // The first step is always taken (the simulation moves on however slow a step is).
+        if (i > 0 && budget.spent()) {
+          result.steps_deferred = plan.steps - i;
+          result.behind_ns = now_ns - clock_.time_ns();
+          break;
+        }
         if (held_ && !replacement_due()) {
           // Nothing can move the held state; the clock keeps to ROS time so that a reset
           // takes effect at the next grid time, and nothing is published.
@@ -274,6 +304,7 @@ void StoneSimulation::advance_to(std::int64_t now_ns, UpdateResult& result) {
         result.advanced = true;
         result.stamp_ns = clock_.time_ns();
       }
+      behind_ = result.steps_deferred > 0;
       // What messages show of the state to publish: once per update, not at every step (the
       // integrator refuses a non-finite state at every step; the derived numbers are checked
       // here, before anything is published).
@@ -310,23 +341,21 @@ void StoneSimulation::step(UpdateResult& result) {
   // Everything below works on a copy and may throw; the simulation changes only at the end.
   RigidBodyState next = state_;
   if (!replaced) integrator_->advance(next, checked_.dt_s, flight_cache_);
-  // Everything due at this step applies in order and starts one segment, named after the last
-  // change: an event each would make segments of zero length at the same stamp.
-  const std::optional<EventReason> reason = apply_changes(auto_reset, next);
-  // A new segment's event carries the outputs of its first state: checked before anything
-  // changes. Other steps leave them to the end of update().
-  std::optional<StateOutput> output;
-  if (reason) output = state_output(model, next);
+  // Everything due at this step applies in order, each change announced with the state it
+  // makes (segments of zero length at the same stamp, but every accepted request is seen).
+  std::vector<Applied> applied = apply_changes(auto_reset, next);
+  // The events carry the outputs of their states: checked before anything changes. Other
+  // steps leave them to the end of update().
+  for (Applied& a : applied) a.output = state_output(model, a.state);
 
   clock_.step();
   state_ = next;
-  output_stale_ = !output;
-  if (output) output_ = *output;
+  output_stale_ = applied.empty();
+  if (!applied.empty()) output_ = applied.back().output;
   pending_.clear();
-  if (reason) {
+  if (!applied.empty())
     flight_cache_.invalidate();  // the integrator must not continue the old motion
-    begin_segment(*reason, next_ns, result);
-  }
+  for (const Applied& a : applied) announce(a.reason, next_ns, a.state, a.output, result);
 }
 
 }  // namespace virtual_go
@@ -334,13 +363,13 @@ void StoneSimulation::step(UpdateResult& result) {
 namespace virtual_go {
 
 // The changes due at this step (an auto reset, then the pending requests in order) applied to
-// `next`; the reason of the segment they start (the last change's), or none.
-std::optional<EventReason> StoneSimulation::apply_changes(bool auto_reset,
-                                                          RigidBodyState& next) const {
-  std::optional<EventReason> reason;
+// `next`; each with the state it makes (the last one's is `next`).
+std::vector<StoneSimulation::Applied> StoneSimulation::apply_changes(bool auto_reset,
+                                                                     RigidBodyState& next) const {
+  std::vector<Applied> applied;
   if (auto_reset) {
     next = checked_.initial_state;
-    reason = EventReason::auto_reset;
+    applied.push_back({EventReason::auto_reset, next, {}});
   }
   for (const Change& change : pending_) {
     if (change.replaces_state()) {
@@ -352,9 +381,9 @@ std::optional<EventReason> StoneSimulation::apply_changes(bool auto_reset,
               : change.omega;
       next = with_angular_velocity_world(checked_.setup.model, next, omega_world);
     }
-    reason = change.reason;
+    applied.push_back({change.reason, next, {}});
   }
-  return reason;
+  return applied;
 }
 
 void StoneSimulation::step_world(UpdateResult& result) {
@@ -376,13 +405,18 @@ void StoneSimulation::step_world(UpdateResult& result) {
   for (const WorldEvent& e : world_events_) events.push_back(segment_event(e));
   // The changes due at this step, in order, as in step().
   RigidBodyState next = held_ ? state_ : world.state(0);
-  const std::optional<EventReason> reason = apply_changes(auto_reset, next);
-  if (reason) {
-    SegmentEvent command;
-    command.stamp_ns = next_ns;
-    command.reason = *reason;
-    command.state = next;
-    command.output = state_output(model, next);
+  const std::vector<Applied> applied = apply_changes(auto_reset, next);
+  if (!applied.empty()) {
+    // One event per change, each with the state it makes; the World gets the last.
+    std::vector<SegmentEvent> commands;
+    for (const Applied& a : applied) {
+      SegmentEvent command;
+      command.stamp_ns = next_ns;
+      command.reason = a.reason;
+      command.state = a.state;
+      command.output = state_output(model, a.state);
+      commands.push_back(std::move(command));
+    }
     world_events_.clear();
     if (held_) {
       // The World may have failed half-way: start it afresh from the replacement.
@@ -395,7 +429,7 @@ void StoneSimulation::step_world(UpdateResult& result) {
     for (; i < world_events_.size() && world_events_[i].kind == WorldEventKind::wake; ++i) {
       events.push_back(segment_event(world_events_[i]));
     }
-    events.push_back(command);
+    for (SegmentEvent& command : commands) events.push_back(std::move(command));
     for (; i < world_events_.size(); ++i) events.push_back(segment_event(world_events_[i]));
   }
   const bool moved = !events.empty() || !world.is_resting(0);

@@ -4,8 +4,11 @@
 #include <ros/ros.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
+#include <set>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -54,7 +57,7 @@ TEST(StoneNodeParams, InvalidParametersAreFatalAndNamed) {
       {"auto_reset", "_auto_reset_period:=0.0005", "~auto_reset_period: must be 0 (never) or"},
       {"orientation", "_initial/orientation:=[0.0,0.0,0.0,0.0]", "~initial/orientation"},
       {"omega", "_initial/angular_velocity:=[0.0,0.0,1.0e6]", "~initial/angular_velocity"},
-      {"type", "_dt:=fast", "~dt: must be a number"},
+      {"type", "_dt:=fast", "~dt: must be a number, got 'fast'"},
       // issue 8: blamed on ~stone/size.
       {"width_small", "_stone/width:=0.005",
        "~stone/width: stone width 0.005 m must be more than the height 0.0092 m"},
@@ -114,6 +117,29 @@ TEST(StoneNodeParams, AbsurdVectorsAreFatalWithTheirLimit) {
   }
 }
 
+// issue 19: the string "true" was printed unquoted, reading as the boolean it was refused for.
+// Strings are quoted, also inside a list. (Set on the master: a _param:= argument cannot give
+// the string "true".)
+TEST(StoneNodeParams, TypeErrorsQuoteStrings) {
+  ros::param::set("/bad_type_string_bool/board/enabled", std::string("true"));
+  Outcome out = run("__name:=bad_type_string_bool");
+  ros::param::del("/bad_type_string_bool/board/enabled");
+  EXPECT_NE(out.exit_code, 0) << out.output;
+  EXPECT_NE(out.output.find("~board/enabled: must be true or false, got 'true'"), std::string::npos)
+      << out.output;
+  XmlRpc::XmlRpcValue list;
+  list[0] = 0.5;
+  list[1] = std::string("a");
+  list[2] = 1;
+  ros::param::set("/bad_type_list/initial/position", list);
+  out = run("__name:=bad_type_list");
+  ros::param::del("/bad_type_list/initial/position");
+  EXPECT_NE(out.exit_code, 0) << out.output;
+  EXPECT_NE(out.output.find("~initial/position: must be a list of 3 numbers, got [0.5, 'a', 1]"),
+            std::string::npos)
+      << out.output;
+}
+
 TEST(StoneNodeParams, HelpNeedsNoMaster) {
   for (const char* flag : {"--help", "-h"}) {
     // A master URI where nothing listens: --help must not try to connect.
@@ -122,4 +148,32 @@ TEST(StoneNodeParams, HelpNeedsNoMaster) {
     EXPECT_NE(out.output.find("usage: rosrun virtual_go stone_node"), std::string::npos);
     EXPECT_NE(out.output.find("~set_angular_velocity"), std::string::npos);
   }
+}
+
+// issue 19: the long ~contact/* names pushed the unit column out of line. Every parameter line
+// has its unit (or, without one, its help) at the same column as every other.
+TEST(StoneNodeParams, HelpColumnsLineUp) {
+  const Outcome out = run("--help", "ROS_MASTER_URI=http://127.0.0.1:9");
+  ASSERT_EQ(out.exit_code, 0) << out.output;
+  const std::size_t section = out.output.find("Parameters (name, unit, meaning; default):\n");
+  ASSERT_NE(section, std::string::npos) << out.output;
+  std::istringstream lines(out.output.substr(section));
+  std::set<std::size_t> unit_columns, help_columns;
+  std::size_t longest = 0, parameters = 0;
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind("  ~", 0) != 0) continue;
+    ++parameters;
+    const std::size_t name_end = line.find(' ', 2);
+    longest = std::max(longest, name_end);
+    const std::size_t next = line.find_first_not_of(' ', name_end);
+    // The unit is one word of at most 7 characters; anything else is the help.
+    const std::size_t next_end = line.find(' ', next);
+    const bool is_unit = next_end != std::string::npos && next_end - next <= 7 &&
+                         line.find_first_not_of(' ', next_end) - next == 8;
+    (is_unit ? unit_columns : help_columns).insert(next);
+  }
+  EXPECT_GT(parameters, 30u);
+  ASSERT_EQ(unit_columns.size(), 1u) << out.output;
+  EXPECT_GT(*unit_columns.begin(), longest) << "a name runs into the unit column";
+  for (std::size_t c : help_columns) EXPECT_EQ(c, *unit_columns.begin() + 8) << out.output;
 }

@@ -17,8 +17,10 @@ class BagReadError : public std::runtime_error {
 
 // Reads every message's stamp, and ~info, ~odom and ~events of the node in node_namespace
 // (e.g. "/stone"). A topic not found under that name is looked up by its message type when
-// exactly one topic has it. Damage after the start of the bag ends reading early and is listed
-// in Recording::problems, as is anything missing; only an unreadable bag throws BagReadError.
+// exactly one topic has it. The file's records are checked first (bag_structure.h): damage to
+// the file header, connections, chunk infos, chunks or index records throws BagReadError naming
+// it; an index entry that points at no message is skipped and listed in Recording::problems,
+// as is damage inside a message and anything missing.
 Recording read_recording(const std::string& path, const std::string& node_namespace);
 
 }  // namespace bag

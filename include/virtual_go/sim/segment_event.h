@@ -12,7 +12,8 @@
 namespace virtual_go {
 
 // From outside the physics (start ... time_jump), then, with the board, the World's changes of
-// regime (world/world_event.h: impact ... wake).
+// regime (world/world_event.h: impact ... wake), then held: a physics step failed and the state
+// is held (detail: the cause) until a reset or set_state replaces it.
 enum class EventReason {
   start,
   reset,
@@ -27,6 +28,7 @@ enum class EventReason {
   lift_off,
   rest,
   wake,
+  held,
 };
 
 std::string event_reason_name(EventReason reason);
@@ -41,7 +43,7 @@ struct SegmentEvent {
   double time_offset_s = 0.0;
   std::uint32_t segment = 0;  // 0 at start, +1 per event
   EventReason reason = EventReason::start;
-  std::string detail;    // contact events: the World's finer cause (e.g. "slip_stop"); else ""
+  std::string detail;    // contact events: the World's finer cause (e.g. "slip_stop"); held: why
   RigidBodyState state;  // the segment's first state
   StateOutput output;    // what a message shows of it (checked finite)
 };

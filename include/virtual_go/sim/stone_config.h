@@ -42,6 +42,8 @@ constexpr double kMaxAutoResetPeriodS = 1e6;
 constexpr double kMaxNodeFriction = 0.9;
 // Largest ~contact/zeno_height: above it the cut-off would remove visible bounces.
 constexpr double kMaxNodeZenoHeightM = 1e-3;
+// Largest rolling-resistance or spinning-friction length: far beyond a stone's size.
+constexpr double kMaxContactLengthM = 1.0;
 
 // Hard caps on the plausibility bounds below (a bound parameter beyond its cap is refused).
 // They make every number the node computes finite, whatever is requested within the bounds:

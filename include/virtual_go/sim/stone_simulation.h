@@ -28,6 +28,7 @@
 #include "virtual_go/sim/state_output.h"
 #include "virtual_go/sim/state_request.h"
 #include "virtual_go/sim/stone_config.h"
+#include "virtual_go/sim/work_budget.h"
 #include "virtual_go/world/world.h"
 
 namespace virtual_go {
@@ -39,6 +40,11 @@ struct UpdateResult {
   // Set once, by the update at which a step failed (log it): its cause. The state is then
   // held and nothing is published until reset, set_state or an auto reset replaces it.
   std::string error;
+  // Physics steps due at ROS time that the work budget left for the next update (0: none), and
+  // how far simulated time then trails the ROS time asked for (ns). Past the clock's maximum
+  // lag (1 s) the simulation skips ahead with a time_jump event instead of catching up.
+  std::int64_t steps_deferred = 0;
+  std::int64_t behind_ns = 0;
 };
 
 // A request refused for a reason other than a bad field: the state is held after a failed
@@ -57,16 +63,21 @@ class StoneSimulation {
 
   // Advances to the latest grid time at or before ROS time now_ns (0 = not valid yet). Never
   // throws: whatever fails holds the state, and is reported once in UpdateResult::error and
-  // to the next request.
+  // to the next request. `budget` is asked before every step after the first: once it is
+  // spent the update returns, and the steps left come at the next update (a slow scene makes
+  // the simulation trail ROS time; the caller stays responsive). Without one, every step due.
+  UpdateResult update(std::int64_t now_ns, WorkBudget& budget) noexcept;
   UpdateResult update(std::int64_t now_ns) noexcept;
 
   // Requests validate at once (InvalidArgument naming the field and its limit; nothing
   // changes) and take effect at the next grid time, which becomes the first state of a new
   // segment: stamps stay strictly increasing and the state already published at the current
-  // time stays true. Requests due at the same step apply in order and start one segment,
-  // named after the last. At most kMaxPendingRequests wait; more are refused (RequestRefused).
-  // Each returns the answer for the caller: "applied at the next physics step", plus the
-  // cause of a failed step not yet reported.
+  // time stays true. Requests due at the same step apply in order, each announced by its own
+  // event with the state it makes (segments of zero length but the last). At most
+  // kMaxPendingRequests wait; more are refused (RequestRefused). Each returns the answer for
+  // the caller: "applied at the next physics step", plus the cause of a failed step not yet
+  // reported. A step that fails is announced by a `held` event (detail: the cause) and its
+  // requests are not applied; the next request's answer names it.
   std::string reset();
   // frame: "" / "world" / world frame id, or "stone" / stone frame id. For rigid_body this sets
   // L = I w at the instant it takes effect. Refused (RequestRefused) while the state is held:
@@ -95,6 +106,8 @@ class StoneSimulation {
   // What messages show of state() (after an update that advanced): checked finite.
   const StateOutput& output() const { return output_; }
   std::int64_t time_ns() const { return clock_.time_ns(); }
+  // How far simulated time may trail ROS time before it skips ahead (a time_jump event).
+  std::int64_t max_lag_ns() const { return clock_.max_lag_ns(); }
   // True after a failed step until a change replaces the state.
   bool held() const { return held_; }
   // With the board: the World (its counters show the work done), else nullptr.
@@ -112,10 +125,16 @@ class StoneSimulation {
     bool replaces_state() const { return reason != EventReason::set_angular_velocity; }
   };
 
-  void advance_to(std::int64_t now_ns, UpdateResult& result);
+  void advance_to(std::int64_t now_ns, WorkBudget& budget, UpdateResult& result);
   void step(UpdateResult& result);
   void step_world(UpdateResult& result);
-  std::optional<EventReason> apply_changes(bool auto_reset, RigidBodyState& next) const;
+  // A change applied at a step: its reason and the state it makes (output: filled by step()).
+  struct Applied {
+    EventReason reason;
+    RigidBodyState state;
+    StateOutput output;
+  };
+  std::vector<Applied> apply_changes(bool auto_reset, RigidBodyState& next) const;
   // With the board: the World restarted with state_ at stamp_ns (its new epoch), and its events
   // at that instant (a stone placed on the board comes to rest) reported.
   void restart_world(std::int64_t stamp_ns, UpdateResult& result);
@@ -133,6 +152,9 @@ class StoneSimulation {
   // The state was replaced from outside the integration: a new segment's first state.
   void replace_state(const RigidBodyState& state);
   void begin_segment(EventReason reason, std::int64_t stamp_ns, UpdateResult& result);
+  // Appends a numbered event (a new segment) with the given first state.
+  void announce(EventReason reason, std::int64_t stamp_ns, const RigidBodyState& state,
+                const StateOutput& output, UpdateResult& result);
   void hold(const std::string& cause, UpdateResult& result);
   void enqueue(Change change);
   std::string answer();
@@ -153,6 +175,7 @@ class StoneSimulation {
   std::string failure_;           // why, for requests
   bool failure_reported_ = true;  // the next request's answer has carried failure_
   std::deque<Change> pending_;
+  bool behind_ = false;  // the last update left steps for the next (its budget was spent)
   // With the board.
   std::optional<World> world_;
   std::int64_t epoch_ns_ = 0;
