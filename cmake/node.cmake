@@ -12,7 +12,7 @@ add_library(virtual_go_sim
   src/sim/stone_simulation.cpp
   src/sim/mesh_file.cpp
   src/sim/clock_watch.cpp
-  src/sim/work_budget.cpp
+  src/sim/update_budget.cpp
   src/sim/board_drawing.cpp)
 target_link_libraries(virtual_go_sim PUBLIC virtual_go_core)
 

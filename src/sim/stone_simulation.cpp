@@ -15,6 +15,9 @@ namespace {
 constexpr std::int64_t kMaxLagNs = kNanosecondsPerSecond;
 
 constexpr char kApplied[] = "applied at the next physics step";
+// World work units (integrator steps, searches, impacts) between two looks at an update's budget:
+// about a millisecond of hard contact (a plane-contact step costs a few microseconds).
+constexpr long kWorkPerSlice = 500;
 
 EventReason event_reason(WorldEventKind kind) {
   switch (kind) {
@@ -107,6 +110,7 @@ void StoneSimulation::restart_world(std::int64_t stamp_ns, UpdateResult& result)
   rest_since_ns_ = -1;
   world_->reset({state_}, 0.0);
   world_events_.clear();
+  mid_step_ = false;
   world_->advance_to(0.0, world_events_);
   std::vector<SegmentEvent> events;
   for (const WorldEvent& e : world_events_) events.push_back(segment_event(e));
@@ -238,7 +242,7 @@ UpdateResult StoneSimulation::update(std::int64_t now_ns) noexcept {
   return update(now_ns, unlimited);
 }
 
-UpdateResult StoneSimulation::update(std::int64_t now_ns, WorkBudget& budget) noexcept {
+UpdateResult StoneSimulation::update(std::int64_t now_ns, UpdateBudget& budget) noexcept {
   UpdateResult result;
   // Whatever fails (a step, a change, an output that would not be finite) holds the state:
   // nothing leaves this function, so no input can stop the node.
@@ -252,7 +256,7 @@ UpdateResult StoneSimulation::update(std::int64_t now_ns, WorkBudget& budget) no
   return result;
 }
 
-void StoneSimulation::advance_to(std::int64_t now_ns, WorkBudget& budget, UpdateResult& result) {
+void StoneSimulation::advance_to(std::int64_t now_ns, UpdateBudget& budget, UpdateResult& result) {
   const SimClock::Plan plan = clock_.plan(now_ns);
   switch (plan.action) {
     case SimClock::Action::wait:
@@ -295,7 +299,11 @@ void StoneSimulation::advance_to(std::int64_t now_ns, WorkBudget& budget, Update
           continue;
         }
         try {
-          step(result);
+          if (!step(result, budget)) {
+            result.steps_deferred = plan.steps - i;
+            result.behind_ns = now_ns - clock_.time_ns();
+            break;
+          }
         } catch (const std::exception& e) {
           hold(e.what(), result);
           continue;
@@ -323,11 +331,8 @@ void StoneSimulation::advance_to(std::int64_t now_ns, WorkBudget& budget, Update
   result.stamp_ns = clock_.time_ns();
 }
 
-void StoneSimulation::step(UpdateResult& result) {
-  if (world_) {
-    step_world(result);
-    return;
-  }
+bool StoneSimulation::step(UpdateResult& result, UpdateBudget& budget) {
+  if (world_) return step_world(result, budget);
   const std::int64_t next_ns = clock_.next_time_ns();
   const std::int64_t auto_reset_ns = checked_.auto_reset_ns;
   const bool auto_reset = auto_reset_ns > 0 && next_ns - segment_start_ns_ >= auto_reset_ns;
@@ -356,6 +361,7 @@ void StoneSimulation::step(UpdateResult& result) {
   if (!applied.empty())
     flight_cache_.invalidate();  // the integrator must not continue the old motion
   for (const Applied& a : applied) announce(a.reason, next_ns, a.state, a.output, result);
+  return true;
 }
 
 }  // namespace virtual_go
@@ -386,21 +392,30 @@ std::vector<StoneSimulation::Applied> StoneSimulation::apply_changes(bool auto_r
   return applied;
 }
 
-void StoneSimulation::step_world(UpdateResult& result) {
+bool StoneSimulation::step_world(UpdateResult& result, UpdateBudget& budget) {
   const std::int64_t next_ns = clock_.next_time_ns();
   const bool auto_reset = auto_reset_due(next_ns);
   World& world = *world_;
-  if (!held_ && !auto_reset && pending_.empty() && world.is_resting(0)) {
+  if (!mid_step_ && !held_ && !auto_reset && pending_.empty() && world.is_resting(0)) {
     // At rest with nothing due: no work, the state and its outputs stay bit for bit.
     clock_.step();
-    return;
+    return true;
   }
   const double t_s = seconds_between(epoch_ns_, next_ns);
   const MotionModel& model = checked_.setup.model;
   // Events up to t_s (the World moves on; if anything below throws, the state is held and the
   // World restarted by the replacement that ends the hold).
-  world_events_.clear();
-  if (!held_) world.advance_to(t_s, world_events_);
+  if (!mid_step_) world_events_.clear();
+  if (!held_) {
+    // In slices of the World's own work units, asking the update's budget between them: one
+    // step of hard contact can take far longer than a tick, and the node must keep answering.
+    // The first slice is always taken, so every update makes progress.
+    mid_step_ = true;
+    while (!world.advance_to(t_s, world_events_, WorkBudget{kWorkPerSlice}).reached) {
+      if (budget.spent()) return false;
+    }
+    mid_step_ = false;
+  }
   std::vector<SegmentEvent> events;
   for (const WorldEvent& e : world_events_) events.push_back(segment_event(e));
   // The changes due at this step, in order, as in step().
@@ -439,6 +454,7 @@ void StoneSimulation::step_world(UpdateResult& result) {
   state_ = world.state(0);
   // Resting since before this step: the outputs already show this very state.
   if (moved) output_stale_ = true;
+  return true;
 }
 
 }  // namespace virtual_go

@@ -167,7 +167,7 @@ TEST(StoneSimulation, ChangesAtOneStepEachMakeAnEvent) {
 }
 
 // A budget spent after a fixed number of questions: the work per update is counted, not timed.
-class StepBudget : public vg::WorkBudget {
+class StepBudget : public vg::UpdateBudget {
  public:
   explicit StepBudget(int steps) : left_(steps) {}
   bool spent() override { return --left_ <= 0; }

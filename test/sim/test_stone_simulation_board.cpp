@@ -421,3 +421,51 @@ TEST(StoneSimulationBoard, FlightsAfterImpactsArePredictableFromTheirEvents) {
       "time_offset: %.3g rad\n",
       checked, worst_rad, worst_m, worst_without_offset_rad);
 }
+
+// issue 19: a drop onto the board rolling on its rim took 2.7 s of work inside one physics
+// step, during which the node answered nothing. The simulation hands the World its step in
+// slices of work and asks the update's budget between them: with a budget that is always spent,
+// every update does at most a slice or so of work, however hard the contact, and the motion
+// still gets on (the next update continues the same step). Today's contact takes that drop in a
+// few hundred units of work per millisecond; a long ~dt (0.5 s, allowed) makes each step as
+// hard as the issue's were.
+TEST(StoneSimulationBoard, HardContactStepIsCutIntoSlicesOfBoundedWork) {
+  struct AlwaysSpent : vg::UpdateBudget {
+    bool spent() override { return true; }
+  };
+  auto rim_drop = [] {
+    vg::StoneConfig c;
+    c.board_enabled = true;
+    c.auto_reset_period_s = 0.0;
+    c.dt_s = 0.5;
+    c.initial_position_world = Eigen::Vector3d(0.06329200445817529, 0.18126251172692187, 0.2046);
+    c.initial_orientation_xyzw = Eigen::Vector4d(0, 0, 0.031737043719820196, 0.9994962531475174);
+    c.initial_angular_velocity_world =
+        Eigen::Vector3d(-72.31305689267572, -25.286227209648988, -10.85487149189666);
+    return c;
+  };
+  vg::StoneSimulation sliced(rim_drop()), whole(rim_drop());
+  ASSERT_NE(sliced.world(), nullptr);
+  AlwaysSpent spent;
+  long sliced_max = 0, whole_max = 0, deferred_updates = 0;
+  std::int64_t now = kStart;
+  constexpr std::int64_t kSpanNs = 3000 * kMs, kStepNs = 500 * kMs;
+  for (int tick = 0; tick < 100000 && sliced.time_ns() < kStart + kSpanNs; ++tick) {
+    const long before = sliced.world()->counters().work();
+    const vg::UpdateResult r = sliced.update(now, spent);
+    ASSERT_TRUE(r.error.empty()) << r.error;
+    sliced_max = std::max(sliced_max, sliced.world()->counters().work() - before);
+    if (r.steps_deferred > 0) ++deferred_updates;
+    now = std::min(now + kMs, kStart + kSpanNs);
+  }
+  EXPECT_GE(sliced.time_ns(), kStart + kSpanNs) << "the sliced motion did not get on";
+  for (std::int64_t t = kStart; t <= sliced.time_ns(); t += kStepNs) {
+    const long before = whole.world()->counters().work();
+    ASSERT_TRUE(whole.update(t).error.empty());
+    whole_max = std::max(whole_max, whole.world()->counters().work() - before);
+  }
+  std::printf("work per update: sliced max %ld, whole max %ld; %ld updates deferred steps\n",
+              sliced_max, whole_max, deferred_updates);
+  EXPECT_GT(deferred_updates, 0) << "no step was hard enough to be cut: the test shows nothing";
+  EXPECT_LT(sliced_max, whole_max);
+}

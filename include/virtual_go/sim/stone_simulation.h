@@ -28,7 +28,7 @@
 #include "virtual_go/sim/state_output.h"
 #include "virtual_go/sim/state_request.h"
 #include "virtual_go/sim/stone_config.h"
-#include "virtual_go/sim/work_budget.h"
+#include "virtual_go/sim/update_budget.h"
 #include "virtual_go/world/world.h"
 
 namespace virtual_go {
@@ -66,7 +66,7 @@ class StoneSimulation {
   // to the next request. `budget` is asked before every step after the first: once it is
   // spent the update returns, and the steps left come at the next update (a slow scene makes
   // the simulation trail ROS time; the caller stays responsive). Without one, every step due.
-  UpdateResult update(std::int64_t now_ns, WorkBudget& budget) noexcept;
+  UpdateResult update(std::int64_t now_ns, UpdateBudget& budget) noexcept;
   UpdateResult update(std::int64_t now_ns) noexcept;
 
   // Requests validate at once (InvalidArgument naming the field and its limit; nothing
@@ -125,9 +125,11 @@ class StoneSimulation {
     bool replaces_state() const { return reason != EventReason::set_angular_velocity; }
   };
 
-  void advance_to(std::int64_t now_ns, WorkBudget& budget, UpdateResult& result);
-  void step(UpdateResult& result);
-  void step_world(UpdateResult& result);
+  void advance_to(std::int64_t now_ns, UpdateBudget& budget, UpdateResult& result);
+  // False: the step is not finished (the World is part-way to the next grid time, the budget
+  // spent); the next update continues it.
+  bool step(UpdateResult& result, UpdateBudget& budget);
+  bool step_world(UpdateResult& result, UpdateBudget& budget);
   // A change applied at a step: its reason and the state it makes (output: filled by step()).
   struct Applied {
     EventReason reason;
@@ -180,7 +182,10 @@ class StoneSimulation {
   std::optional<World> world_;
   std::int64_t epoch_ns_ = 0;
   std::int64_t rest_since_ns_ = -1;       // first whole ns at rest (the rest event's, rounded up)
-  std::vector<WorldEvent> world_events_;  // scratch
+  std::vector<WorldEvent> world_events_;  // the events of the step in progress
+  // The World is part-way to the next grid time (a step cut short by the budget); its events
+  // so far are in world_events_.
+  bool mid_step_ = false;
 };
 
 }  // namespace virtual_go

@@ -1,4 +1,4 @@
-#include "virtual_go/sim/work_budget.h"
+#include "virtual_go/sim/update_budget.h"
 
 #include <algorithm>
 

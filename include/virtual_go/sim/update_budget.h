@@ -9,22 +9,22 @@
 
 namespace virtual_go {
 
-class WorkBudget {
+class UpdateBudget {
  public:
-  virtual ~WorkBudget() = default;
+  virtual ~UpdateBudget() = default;
   // Asked before each physics step after the first of an update: true stops the update there;
   // the steps not taken come at the next update (the simulation falls behind ROS time).
   virtual bool spent() = 0;
 };
 
 // Never spent: every step due is taken (tests, tools that do not serve anyone meanwhile).
-class UnlimitedBudget : public WorkBudget {
+class UnlimitedBudget : public UpdateBudget {
  public:
   bool spent() override { return false; }
 };
 
 // Spent once the steady clock passes start + allowance.
-class DeadlineBudget : public WorkBudget {
+class DeadlineBudget : public UpdateBudget {
  public:
   explicit DeadlineBudget(std::chrono::nanoseconds allowance)
       : deadline_(std::chrono::steady_clock::now() + allowance) {}
