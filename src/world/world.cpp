@@ -83,6 +83,10 @@ void World::start_stones(const std::vector<RigidBodyState>& states, double t0_s)
   hot_.assign(states.size(), StoneHot{});
   records_.clear();
   records_.resize(states.size());
+  // Every stone starts awake (in flight); one placed at rest comes to rest at its first advance.
+  awake_.resize(states.size());
+  awake_slot_.resize(states.size());
+  for (std::size_t i = 0; i < states.size(); ++i) awake_[i] = awake_slot_[i] = i;
   for (std::size_t i = 0; i < states.size(); ++i) {
     begin_flight(i, states[i].validated(), t0_s, false);
   }
@@ -92,9 +96,24 @@ const RigidBodyState& World::state(std::size_t stone) const { return hot_.at(sto
 StoneMode World::mode(std::size_t stone) const { return hot_.at(stone).mode; }
 ContactPhase World::contact_phase(std::size_t stone) const { return records_.at(stone).phase; }
 
-bool World::all_resting() const {
-  return std::all_of(hot_.begin(), hot_.end(),
-                     [](const StoneHot& h) { return h.mode == StoneMode::resting; });
+void World::set_mode(std::size_t i, StoneMode mode) {
+  hot_[i].mode = mode;
+  sync_awake(i);
+}
+
+void World::sync_awake(std::size_t i) {
+  const bool awake = hot_[i].mode != StoneMode::resting;
+  if (awake == (awake_slot_[i] != kAsleep)) return;
+  if (awake) {
+    awake_slot_[i] = awake_.size();
+    awake_.push_back(i);
+    return;
+  }
+  const std::size_t slot = awake_slot_[i], last = awake_.back();
+  awake_[slot] = last;
+  awake_slot_[last] = slot;
+  awake_.pop_back();
+  awake_slot_[i] = kAsleep;
 }
 
 double World::next_contact_time(std::size_t stone) const {
@@ -149,10 +168,14 @@ AdvanceResult World::advance_to(double t_s, std::vector<WorldEvent>& events,
   const bool bounded = budget.max_steps != std::numeric_limits<long>::max();
   // The stones whose advance costs more than a flight sample (in contact, or meeting a contact
   // before t_s) go first; the cheap ones are sampled at the end, at the time all reached.
+  // Only awake stones are looked at; costly ones in stone order (the order the budget is shared
+  // in does not depend on the history of the awake list).
   std::vector<std::size_t> costly;
-  for (std::size_t i = 0; i < hot_.size(); ++i) {
+  for (const std::size_t i : awake_) {
+    ++counters_.stones_visited;
     if (!is_cheap(i, t_s)) costly.push_back(i);
   }
+  std::sort(costly.begin(), costly.end());
   double target = t_s;
   bool stopped = false;
   // With a budget and several costly stones, each one's state before it is advanced: a stone
@@ -182,6 +205,7 @@ AdvanceResult World::advance_to(double t_s, std::vector<WorldEvent>& events,
       if (!(hot_[snap.stone].state_time_s > target)) continue;
       hot_[snap.stone] = snap.hot;
       records_[snap.stone] = snap.record;
+      sync_awake(snap.stone);  // it may have come to rest after the snapshot
       pending_.erase(std::remove_if(pending_.begin(), pending_.end(),
                                     [&](const WorldEvent& e) {
                                       return e.stone == snap.stone &&
@@ -192,7 +216,7 @@ AdvanceResult World::advance_to(double t_s, std::vector<WorldEvent>& events,
       (void)advance_stone(snap.stone, target, std::numeric_limits<long>::max());
     }
   }
-  for (std::size_t i = 0; i < hot_.size(); ++i) {
+  for (const std::size_t i : awake_) {
     if (is_cheap(i, target)) sample_flight(i, target);
   }
   time_ = target;
@@ -356,7 +380,7 @@ void World::begin_flight(std::size_t i, const RigidBodyState& state, double t_s,
     start_nonsmooth(i, state, t_s, WorldEventDetail::edge_contact, nullptr);
     return;
   }
-  h.mode = StoneMode::flight;
+  set_mode(i, StoneMode::flight);
   h.state = state;
   h.state_time_s = t_s;
   r.phase = ContactPhase::none;
@@ -459,7 +483,7 @@ void World::enter_sustained(std::size_t i, const RigidBodyState& state, double t
   r.nonsmooth.reset();
   r.phase = ContactPhase::plane;
   r.plane_seen = PlaneContactCounters{};
-  h.mode = StoneMode::contact;
+  set_mode(i, StoneMode::contact);
   h.state_time_s = t_s;
   if (r.plane->finished()) {
     // At rest at once (or leaving at once): the outcome comes with the first advance.
@@ -483,7 +507,7 @@ void World::start_nonsmooth(std::size_t i, const RigidBodyState& state, double t
                       t_s, config_.options.nonsmooth);
   r.nonsmooth_seen = NonsmoothCounters{};
   r.phase = ContactPhase::nonsmooth;
-  h.mode = StoneMode::contact;
+  set_mode(i, StoneMode::contact);
   h.state = r.nonsmooth->lattice_state();
   h.state_time_s = t_s;
   WorldEvent& e = emit(i, t_s, WorldEventKind::slide, detail, h.state);
@@ -497,7 +521,7 @@ void World::come_to_rest(std::size_t i, const RigidBodyState& state, double t_s,
                          WorldEventDetail detail) {
   StoneHot& h = hot_[i];
   StoneRecord& r = records_[i];
-  h.mode = StoneMode::resting;
+  set_mode(i, StoneMode::resting);
   h.state = state;
   h.state_time_s = t_s;
   r.phase = ContactPhase::none;

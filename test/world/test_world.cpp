@@ -14,6 +14,7 @@
 
 #include "support/flight_reference.h"
 #include "virtual_go/common/validation.h"
+#include "virtual_go/go/go_point.h"
 #include "world_test_support.h"
 
 namespace {
@@ -331,6 +332,88 @@ TEST(WorldRest, ARestingStoneCostsNothingAndStaysBitwiseStill) {
   EXPECT_EQ(frozen.velocity_world, Vector3d::Zero());
   EXPECT_EQ(frozen.angular_momentum_world, Vector3d::Zero());
   EXPECT_NEAR(plane_gap(frozen, 0.0), 0.0, 1e-15);
+}
+
+// Every counter but advance_calls, for "no work was done".
+void expect_same_work(const vg::WorldCounters& a, const vg::WorldCounters& b) {
+  EXPECT_EQ(a.flight_steps, b.flight_steps);
+  EXPECT_EQ(a.contact_searches, b.contact_searches);
+  EXPECT_EQ(a.contact_search_steps, b.contact_search_steps);
+  EXPECT_EQ(a.impacts, b.impacts);
+  EXPECT_EQ(a.impact_slip_steps, b.impact_slip_steps);
+  EXPECT_EQ(a.plane_contact_steps, b.plane_contact_steps);
+  EXPECT_EQ(a.plane_contact_rhs, b.plane_contact_rhs);
+  EXPECT_EQ(a.nonsmooth_steps, b.nonsmooth_steps);
+  EXPECT_EQ(a.nonsmooth_impulses, b.nonsmooth_impulses);
+  EXPECT_EQ(a.events, b.events);
+  EXPECT_EQ(a.stones_visited, b.stones_visited);
+}
+
+// Issue 15: a resting full board costs what an empty one does. 361 stones set down flat on every
+// point (pole on the top face: z_G = c, at rest at once), then 10^6 calls: no stone is even
+// looked at (stones_visited stays put), states bitwise frozen. Waking one stone makes exactly that
+// one visited until it rests again.
+TEST(WorldRest, AFullRestingBoardIsNeverVisited) {
+  const vg::WorldConfig c = config(0.5);
+  std::vector<vg::RigidBodyState> stones;
+  for (int index = 0; index < vg::kGoLines * vg::kGoLines; ++index) {
+    const Vector3d p = vg::go_point_world(c.board, vg::point_at_index(index));
+    stones.push_back(at(Vector3d(p.x(), p.y(), p.z() + kC)));
+  }
+  vg::World world(c, stones, 0.0);
+  std::vector<vg::WorldEvent> events;
+  world.advance_to(1e-3, events);
+  ASSERT_TRUE(world.all_resting());
+  ASSERT_EQ(of_kind(events, WorldEventKind::rest).size(), stones.size());
+  std::vector<vg::RigidBodyState> frozen;
+  for (std::size_t i = 0; i < stones.size(); ++i) {
+    frozen.push_back(world.state(i));
+    // Where it was set down (flat on its point), velocities exactly zero.
+    EXPECT_NEAR((frozen[i].position_world - stones[i].position_world).norm(), 0.0, 1e-15);
+    EXPECT_EQ(frozen[i].velocity_world, Vector3d::Zero());
+    EXPECT_EQ(frozen[i].angular_momentum_world, Vector3d::Zero());
+  }
+  const vg::WorldCounters before = world.counters();
+  EXPECT_EQ(before.stones_visited, static_cast<long>(stones.size()));  // the first call only
+  const std::size_t events_before = events.size();
+  for (long k = 1; k <= 1000000; ++k) world.advance_to(1e-3 + k * 1e-3, events);
+  EXPECT_EQ(world.counters().advance_calls - before.advance_calls, 1000000);
+  expect_same_work(world.counters(), before);
+  EXPECT_EQ(events.size(), events_before);
+  for (std::size_t i = 0; i < stones.size(); ++i) {
+    EXPECT_TRUE(world.state(i) == frozen[i]) << "stone " << i;  // bitwise
+    EXPECT_TRUE(world.is_resting(i));
+  }
+
+  // Lift K10 (tengen) by 1 cm: only it is visited while it falls, bounces and settles.
+  const std::size_t tengen = vg::point_index(vg::parse_gtp_point("K10"));
+  vg::RigidBodyState lifted = world.state(tengen);
+  lifted.position_world.z() += 0.01;
+  double t = world.time();
+  world.set_state(tengen, lifted, t, events);
+  EXPECT_FALSE(world.all_resting());
+  long calls = 0;
+  const long visited_before = world.counters().stones_visited;
+  while (!world.all_resting() && calls < 2000) {
+    t += 1e-3;
+    world.advance_to(t, events);
+    ++calls;
+  }
+  ASSERT_TRUE(world.all_resting());
+  EXPECT_EQ(world.counters().stones_visited - visited_before, calls);
+  const vg::WorldCounters settled = world.counters();
+  for (int k = 0; k < 1000; ++k) world.advance_to(t += 1e-3, events);
+  expect_same_work(world.counters(), settled);
+  for (std::size_t i = 0; i < stones.size(); ++i) {
+    if (i != tengen) EXPECT_TRUE(world.state(i) == frozen[i]) << "stone " << i;
+  }
+
+  // A reset wakes them all again.
+  world.reset(stones, 0.0);
+  EXPECT_FALSE(world.all_resting());
+  world.advance_to(1e-3, events);
+  EXPECT_EQ(world.counters().stones_visited, static_cast<long>(stones.size()));
+  EXPECT_TRUE(world.all_resting());
 }
 
 TEST(WorldRest, ACommandWakesARestingStone) {

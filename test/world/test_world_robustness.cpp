@@ -85,9 +85,15 @@ TEST(WorldRobustness, SpinAtTheBoundFinishesWithBoundedWork) {
 
 // Finding 4: allowed materials on the first landing (toms748 "Parameters a and b out of order"
 // from a degenerate event bracket).
-// KNOWN (issue 19, open): with these lengths (0.1 m and 1 m, far beyond the lens) the plane
-// contact's samples rise up to ~1.5e-10 J above an earlier state, so only the energy against
-// the start is asserted here.
+// KNOWN (issue 19, open): with these lengths (0.1 m and 1 m, far beyond the lens) samples rise
+// up to ~1.5e-10 J above an earlier state, so only the energy against the start is asserted
+// here. Cause: a rolling couple l_r N that large makes the sliding law's normal column push the
+// contact point into the plane (dp_z/dN <= 0, a Painleve-type inconsistency: for a size-33 slate
+// at l_r >= 0.9 mm with mu 0.9, 4.9 mm with mu 0.5, 9.9 mm frictionless, over random
+// orientations and directions), so the plane model reports a spurious lift-off while free flight
+// closes the gap; the stone then cycles fallback -> plane -> lift-off every 0.1 ms sub-step, and
+// the fallback's grid samples (partial sub-steps, not committed) dissipate more than the
+// committed path, which then lies above them. Inside l_r <= 0.5 mm see the next test.
 TEST(WorldRobustness, ExtremeAllowedMaterialsLand) {
   for (const vg::WorldConfig& c : {yaml(0.9, 0.1), yaml(0.5, 1.0)}) {
     vg::World world(c, toss(Vector3d(2, 0, 10)), 0.0);
@@ -98,6 +104,19 @@ TEST(WorldRobustness, ExtremeAllowedMaterialsLand) {
     EXPECT_LE(world.counters().work(), 100000);
     std::printf("[ measured ] largest energy rise over an earlier state %.3g J\n",
                 r.worst_energy_rise);
+  }
+}
+
+// Rolling-resistance lengths inside the law's consistent range (below the Painleve-type bound
+// above, with Coulomb's largest mu): energy never rises above any earlier state.
+TEST(WorldRobustness, LargeConsistentRollingResistanceNeverGainsEnergy) {
+  for (const vg::WorldConfig& c : {yaml(0.9, 5e-4), yaml(0.5, 3e-3)}) {
+    vg::World world(c, toss(Vector3d(2, 0, 10)), 0.0);
+    WorldRun r;
+    EXPECT_NO_THROW(run_into(r, world, 2.0, 1e-3));
+    EXPECT_GE(r.worst_gap, -1e-12);
+    r.expect_no_energy_gain();
+    EXPECT_LE(world.counters().work(), 100000);
   }
 }
 

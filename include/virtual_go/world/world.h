@@ -8,9 +8,11 @@
 //
 // Cost: a flying stone costs one exact-integrator step per call (two quaternion products on a
 // fixed grid) and a comparison with its cached contact time, searched once per flight; a stone in
-// contact costs its contact model's steps; a resting stone costs nothing: it is skipped, its pose
-// frozen bit for bit, until a command wakes it. Stones do not interact yet (stone-stone contact
-// is later work): each one's events are found on its own, then merged in time order.
+// contact costs its contact model's steps; a resting stone costs nothing: it is not even looked
+// at (the world keeps the list of awake stones, as Box2D v3 keeps its awake set, so a call costs
+// the same with 0 or 361 resting stones), its pose frozen bit for bit, until a command wakes it.
+// Stones do not interact yet (stone-stone contact is later work): each one's events are found on
+// its own, then merged in time order.
 //
 // Per-stone data is kept in two arrays (as in Box2D v3's solver sets): the hot part every call
 // reads (state, mode, the times up to which a flight needs only sampling) and the bookkeeping
@@ -100,7 +102,7 @@ class World {
   const RigidBodyState& state(std::size_t stone) const;  // at time()
   StoneMode mode(std::size_t stone) const;
   bool is_resting(std::size_t stone) const { return mode(stone) == StoneMode::resting; }
-  bool all_resting() const;
+  bool all_resting() const { return awake_.empty(); }
   ContactPhase contact_phase(std::size_t stone) const;
   // In flight: the time of the flight's first contact once found, +infinity while none is known.
   double next_contact_time(std::size_t stone) const;
@@ -136,6 +138,10 @@ class World {
   };
 
   void check_state(const std::string& field, const RigidBodyState& state) const;
+  // Sets the stone's mode and keeps awake_ in step with it: every mode change goes through here
+  // (or through sync_awake after a state is restored wholesale).
+  void set_mode(std::size_t i, StoneMode mode);
+  void sync_awake(std::size_t i);
   void start_stones(const std::vector<RigidBodyState>& states, double t0_s);
   // True when the stone reached t_s (or rests); false when the work counter hit work_limit
   // first (the stone is then at hot_[i].state_time_s < t_s).
@@ -169,6 +175,11 @@ class World {
   double time_ = 0.0;
   std::vector<StoneHot> hot_;
   std::vector<StoneRecord> records_;
+  // The stones not resting, in no particular order (removal swaps with the last), and each
+  // stone's slot in it (kAsleep while it rests). Only these are visited by advance_to.
+  static constexpr std::size_t kAsleep = std::numeric_limits<std::size_t>::max();
+  std::vector<std::size_t> awake_;
+  std::vector<std::size_t> awake_slot_;
   std::vector<WorldEvent> pending_;
   WorldCounters counters_;
 };

@@ -17,6 +17,10 @@ struct WorldCounters {
   long nonsmooth_steps = 0;       // committed sub-steps of the fallback
   long nonsmooth_impulses = 0;    // plastic impulses of the fallback
   long events = 0;                // events reported
+  // Stones advance_to looked at: the awake ones (flight or contact), one visit each per call. A
+  // resting stone is never visited, so a resting board adds nothing here (issue 15: O(1) in
+  // resting stones).
+  long stones_visited = 0;
 
   // The work a WorkBudget bounds (world.h): every step of a contact model, search or impact.
   // Flight samples are not counted: one per flying stone per call, in closed form.
