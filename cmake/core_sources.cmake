@@ -23,6 +23,7 @@ set(VG_CORE_SOURCES
   src/go/stone_sizes.cpp
   src/go/stone_materials.cpp
   src/go/stone.cpp
+  src/go/stone_set.cpp
   src/go/board.cpp
   src/go/stone_color.cpp
   src/go/go_point.cpp

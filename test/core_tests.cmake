@@ -11,6 +11,7 @@ foreach(core_test
     body/test_rigid_body_state
     body/test_rigid_body
     go/test_stone
+    go/test_stone_set
     flight/test_integrator_registry
     flight/test_flight_cache
     flight/test_free_fall
