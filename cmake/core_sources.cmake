@@ -9,6 +9,7 @@ set(VG_CORE_SOURCES
   src/geometry/tessellation.cpp
   src/geometry/lens_geometry.cpp
   src/geometry/lens_distance.cpp
+  src/geometry/lens_pair_distance.cpp
   src/body/mass_properties.cpp
   src/body/rigid_body_state.cpp
   src/body/motion_model.cpp

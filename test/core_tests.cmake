@@ -21,6 +21,7 @@ foreach(core_test
     flight/test_constant_omega
     geometry/test_lens_geometry
     geometry/test_lens_distance
+    geometry/test_lens_pair_distance
     go/test_board
     go/test_board_distance
     go/test_go_point
