@@ -35,6 +35,7 @@ set(VG_CORE_SOURCES
   src/contact/material.cpp
   src/contact/flight_gap_bound.cpp
   src/contact/time_of_impact.cpp
+  src/contact/pair_time_of_impact.cpp
   src/contact/impact.cpp
   src/contact/plane_region.cpp
   src/contact/lens_on_plane.cpp

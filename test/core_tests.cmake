@@ -31,6 +31,7 @@ foreach(core_test
     contact/test_material
     contact/test_flight_gap_bound
     contact/test_time_of_impact
+    contact/test_pair_time_of_impact
     contact/test_impact
     contact/test_plane_region
     contact/test_lens_on_plane

@@ -149,6 +149,12 @@ double lens_pair_gap_along(const LensGeometry& lens_a, const LensPose& pose_a,
   return PairProblem(lens_a, pose_a, lens_b, pose_b).gap(n);
 }
 
+LensPairContact lens_pair_contact_along(const LensGeometry& lens_a, const LensPose& pose_a,
+                                        const LensGeometry& lens_b, const LensPose& pose_b,
+                                        const Eigen::Vector3d& n) {
+  return PairProblem(lens_a, pose_a, lens_b, pose_b).contact(n);
+}
+
 LensPairContact lens_pair_distance(const LensGeometry& lens_a, const LensPose& pose_a,
                                    const LensGeometry& lens_b, const LensPose& pose_b) {
   const PairProblem problem(lens_a, pose_a, lens_b, pose_b);

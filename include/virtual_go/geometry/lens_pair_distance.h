@@ -45,8 +45,15 @@ double lens_pair_gap_along(const LensGeometry& lens_a, const LensPose& pose_a,
                            const LensGeometry& lens_b, const LensPose& pose_b,
                            const Eigen::Vector3d& normal_world);
 
+// The contact along a fixed unit n: gap F(n), normal n, A's support point along n and B's along
+// -n with their features.
+LensPairContact lens_pair_contact_along(const LensGeometry& lens_a, const LensPose& pose_a,
+                                        const LensGeometry& lens_b, const LensPose& pose_b,
+                                        const Eigen::Vector3d& normal_world);
+
 // The signed distance, normal, witness points and features. Exact to round-off (~1e-17 m) when
-// apart or touching.
+// apart or touching. Touching, the normal can be any direction of a set (two flat stones rim to
+// rim in one plane touch along every tilt of the rims' fans): one of them is returned.
 LensPairContact lens_pair_distance(const LensGeometry& lens_a, const LensPose& pose_a,
                                    const LensGeometry& lens_b, const LensPose& pose_b);
 
