@@ -34,6 +34,7 @@ foreach(core_test
     contact/test_pair_time_of_impact
     contact/test_impact
     contact/test_pair_impact
+    contact/test_simultaneous_impacts
     contact/test_plane_region
     contact/test_lens_on_plane
     contact/test_dop853
