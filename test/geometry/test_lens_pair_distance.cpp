@@ -365,3 +365,21 @@ TEST(LensPairDistance, PenetrationDepthIsTheShortestWayApart) {
   // The scan (0.018 rad spacing) comes within its resolution, ~ (R_A + R_B) h^2 / 2.
   EXPECT_LT(best_scan_short, 1e-5);
 }
+
+TEST(LensPairDistance, ConcentricStonesHaveTheirClosedFormDepth) {
+  // Concentric and coaxial, B leaves fastest along the axis: depth c_A + c_B. Concentric with
+  // B's axis along x: along z the extents are c_A and a_B, along x a_A and c_B, along y a_A
+  // and a_B, so the depth is c_A + a_B (and no oblique direction is better: the scan test).
+  Fixture f;
+  vgtest::LensReference a{kAa, kC}, b{kAb, kC};
+  const vg::LensPairContact coaxial = f.distance(a, b);
+  EXPECT_NEAR(coaxial.gap_m, -2 * kC, kRoundOff);
+  EXPECT_NEAR(std::abs(coaxial.normal_world.z()), 1.0, 1e-12);
+  b.b = Eigen::Vector3d::UnitX();
+  const vg::LensPairContact crossed = f.distance(a, b);
+  EXPECT_NEAR(crossed.gap_m, -(kC + kAb), kRoundOff);
+  EXPECT_NEAR(std::abs(crossed.normal_world.z()), 1.0, 1e-12);
+  // Far apart: still finite and exact.
+  b.x = Eigen::Vector3d(1e3, 0, 0);
+  EXPECT_NEAR(f.distance(a, b).gap_m, 1e3 - kAa - kC, 1e-12);
+}
