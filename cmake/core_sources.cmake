@@ -9,6 +9,7 @@ set(VG_CORE_SOURCES
   src/geometry/tessellation.cpp
   src/geometry/lens_geometry.cpp
   src/geometry/lens_distance.cpp
+  src/geometry/lens_pair_distance.cpp
   src/body/mass_properties.cpp
   src/body/rigid_body_state.cpp
   src/body/motion_model.cpp
@@ -23,6 +24,7 @@ set(VG_CORE_SOURCES
   src/go/stone_sizes.cpp
   src/go/stone_materials.cpp
   src/go/stone.cpp
+  src/go/stone_set.cpp
   src/go/board.cpp
   src/go/stone_color.cpp
   src/go/go_point.cpp
@@ -33,7 +35,10 @@ set(VG_CORE_SOURCES
   src/contact/material.cpp
   src/contact/flight_gap_bound.cpp
   src/contact/time_of_impact.cpp
+  src/contact/pair_time_of_impact.cpp
   src/contact/impact.cpp
+  src/contact/pair_impact.cpp
+  src/contact/simultaneous_impacts.cpp
   src/contact/plane_region.cpp
   src/contact/lens_on_plane.cpp
   src/contact/plane_contact_dynamics.cpp

@@ -11,6 +11,7 @@ foreach(core_test
     body/test_rigid_body_state
     body/test_rigid_body
     go/test_stone
+    go/test_stone_set
     flight/test_integrator_registry
     flight/test_flight_cache
     flight/test_free_fall
@@ -20,6 +21,7 @@ foreach(core_test
     flight/test_constant_omega
     geometry/test_lens_geometry
     geometry/test_lens_distance
+    geometry/test_lens_pair_distance
     go/test_board
     go/test_board_distance
     go/test_go_point
@@ -29,7 +31,10 @@ foreach(core_test
     contact/test_material
     contact/test_flight_gap_bound
     contact/test_time_of_impact
+    contact/test_pair_time_of_impact
     contact/test_impact
+    contact/test_pair_impact
+    contact/test_simultaneous_impacts
     contact/test_plane_region
     contact/test_lens_on_plane
     contact/test_dop853

@@ -1,0 +1,60 @@
+// Signed distance between two lenses (two Go stones, possibly of different sizes) in arbitrary
+// poses, with the closest points and the features they lie on (docs/physics.md, "Stone–stone
+// contact (primitives)"). World frame throughout; each lens enters only through its centre and
+// symmetry axis (LensPose), as in lens_distance.h.
+//
+// The gap along a unit direction n (from A towards B),
+//   F(n) = n . (x_B - x_A) - reach_A(b_A . n) - reach_B(b_B . n),
+// is the gap between the two supporting planes with normal n, so F(n) <= signed distance for
+// every n, with equality at the best n (convex duality). Its gradient on the sphere is the
+// tangential part of w(n) = s_B(-n) - s_A(n), the difference of the two support points, and its
+// Hessian is that of the two support functions (R (1 - n n^T) on a cap, a/|n_perp| (P_b - e e^T)
+// on the rim): Newton's method on the sphere converges quadratically. When the lenses are apart,
+// F has a single local maximum among its positive values (F is concave and positively
+// homogeneous), so the ascent from any positive start is exact. It starts from the closed-form
+// feature candidates (cap-cap: the line through the two sphere centres; cap-rim: the sphere
+// centre to the nearest rim point; the centre line), and, when none of them is positive, from a
+// Fibonacci sphere of directions too: overlapping lenses can have several local maxima, the
+// best of which is the penetration depth (multistart: checked in the tests against a dense scan
+// of directions and by translating the lenses apart).
+#pragma once
+
+#include <Eigen/Core>
+
+#include "virtual_go/geometry/lens_distance.h"
+#include "virtual_go/geometry/lens_geometry.h"
+
+namespace virtual_go {
+
+struct LensPairContact {
+  // > 0 apart: the distance. < 0 overlapping: minus the penetration depth, the length of the
+  // shortest translation of B (along normal_world) that separates the lenses. 0: touching.
+  double gap_m = 0.0;
+  Eigen::Vector3d normal_world = Eigen::Vector3d::UnitZ();  // unit, from A towards B
+  // A's support point along +normal and B's along -normal. Apart: the closest points,
+  // point_b - point_a = gap * normal.
+  Eigen::Vector3d point_a_world = Eigen::Vector3d::Zero();
+  Eigen::Vector3d point_b_world = Eigen::Vector3d::Zero();
+  LensPart part_a = LensPart::rim;  // the feature of A at point_a (a cap or the rim)
+  LensPart part_b = LensPart::rim;
+  int newton_steps = 0;  // accepted steps on the sphere (all starts)
+};
+
+// F(n) above for a unit n: a lower bound of the signed distance for every n. m.
+double lens_pair_gap_along(const LensGeometry& lens_a, const LensPose& pose_a,
+                           const LensGeometry& lens_b, const LensPose& pose_b,
+                           const Eigen::Vector3d& normal_world);
+
+// The contact along a fixed unit n: gap F(n), normal n, A's support point along n and B's along
+// -n with their features.
+LensPairContact lens_pair_contact_along(const LensGeometry& lens_a, const LensPose& pose_a,
+                                        const LensGeometry& lens_b, const LensPose& pose_b,
+                                        const Eigen::Vector3d& normal_world);
+
+// The signed distance, normal, witness points and features. Exact to round-off (~1e-17 m) when
+// apart or touching. Touching, the normal can be any direction of a set (two flat stones rim to
+// rim in one plane touch along every tilt of the rims' fans): one of them is returned.
+LensPairContact lens_pair_distance(const LensGeometry& lens_a, const LensPose& pose_a,
+                                   const LensGeometry& lens_b, const LensPose& pose_b);
+
+}  // namespace virtual_go

@@ -1,0 +1,238 @@
+#include "virtual_go/geometry/lens_pair_distance.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+namespace virtual_go {
+
+namespace {
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+// Newton on the sphere stops when its step turns n by less than this (rad). F alone resolves n
+// only to ~sqrt(2 ulp(F) / curvature) ~ 5e-8 rad; the gradient (the witness points' tangential
+// offset) resolves it to round-off, so small Newton steps are taken on the gradient's word.
+constexpr double kStepRad = 1e-14;
+// Below this step length (rad) a Newton step (positive definite model) is taken without
+// comparing F, whose changes are then at its round-off.
+constexpr double kTrustedStepRad = 1e-6;
+constexpr int kMaxSteps = 60;
+// Extra starts when no candidate is positive (overlapping or touching): a Fibonacci sphere.
+constexpr int kSphereStarts = 96;
+// Of the sphere's starts, how many of the best local maxima (at least this far apart, rad) are
+// polished.
+constexpr int kPolishedStarts = 4;
+constexpr double kDistinctRad = 0.3;
+
+Eigen::Vector3d any_perpendicular(const Eigen::Vector3d& e) {
+  const Eigen::Vector3d a =
+      std::abs(e.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+  return (a - a.dot(e) * e).normalized();
+}
+
+// The Hessian of a centred lens's support function at the unit direction n (1/m times m):
+// R (1 - n n^T) where the support lies on a cap, a / |n_perp| (P_b - e e^T) on the rim.
+Eigen::Matrix3d support_hessian(const LensGeometry& lens, const Eigen::Vector3d& b,
+                                const Eigen::Vector3d& n) {
+  const double ct = b.dot(n);
+  if (lens.part_towards_plane(ct) != LensPart::rim) {
+    return lens.sphere_radius() * (Eigen::Matrix3d::Identity() - n * n.transpose());
+  }
+  const Eigen::Vector3d perp = n - ct * b;
+  const double s = perp.norm();
+  const Eigen::Vector3d e = perp / s;
+  return (lens.half_width() / s) *
+         (Eigen::Matrix3d::Identity() - b * b.transpose() - e * e.transpose());
+}
+
+// The nearest point of the rim of the lens at `pose` to the point p (any rim point when p is
+// on the axis).
+Eigen::Vector3d nearest_rim_point(const LensGeometry& lens, const LensPose& pose,
+                                  const Eigen::Vector3d& p) {
+  const Eigen::Vector3d& b = pose.axis_world;
+  Eigen::Vector3d radial = (p - pose.center_world) - (p - pose.center_world).dot(b) * b;
+  const double length = radial.norm();
+  radial = length > 0.0 ? Eigen::Vector3d(radial / length) : any_perpendicular(b);
+  return pose.center_world + lens.half_width() * radial;
+}
+
+class PairProblem {
+ public:
+  PairProblem(const LensGeometry& lens_a, const LensPose& pose_a, const LensGeometry& lens_b,
+              const LensPose& pose_b)
+      : lens_a_(lens_a), pose_a_(pose_a), lens_b_(lens_b), pose_b_(pose_b) {}
+
+  double gap(const Eigen::Vector3d& n) const {
+    return n.dot(pose_b_.center_world - pose_a_.center_world) -
+           lens_a_.reach(pose_a_.axis_world.dot(n)) - lens_b_.reach(pose_b_.axis_world.dot(n));
+  }
+
+  LensPairContact contact(const Eigen::Vector3d& n) const {
+    LensPairContact c;
+    c.normal_world = n;
+    c.gap_m = gap(n);
+    // lens_support_world(.., m) is the point deepest along -m.
+    c.point_a_world = lens_support_world(lens_a_, pose_a_, -n, &c.part_a);
+    c.point_b_world = lens_support_world(lens_b_, pose_b_, n, &c.part_b);
+    return c;
+  }
+
+  // Monotone Newton ascent of F on the sphere from the unit n; returns the final n.
+  Eigen::Vector3d ascend(Eigen::Vector3d n, double* value, int* steps) const {
+    double f = gap(n);
+    for (int it = 0; it < kMaxSteps; ++it) {
+      const LensPairContact c = contact(n);
+      const Eigen::Vector3d w = c.point_b_world - c.point_a_world;  // gradient of F
+      const Eigen::Vector3d t1 = any_perpendicular(n), t2 = n.cross(t1);
+      Eigen::Matrix<double, 3, 2> t;
+      t << t1, t2;
+      const Eigen::Vector2d g = t.transpose() * w;
+      if (g.norm() == 0.0) break;
+      const Eigen::Matrix3d h = support_hessian(lens_a_, pose_a_.axis_world, n) +
+                                support_hessian(lens_b_, pose_b_.axis_world, n);
+      // Newton on the sphere: (T^T (H_A + H_B) T + F 1) xi = T^T w; where that matrix is not
+      // positive definite (overlapping, F < 0), a gradient step scaled by the curvature.
+      const Eigen::Matrix2d m = t.transpose() * h * t + f * Eigen::Matrix2d::Identity();
+      Eigen::Vector2d xi;
+      const Eigen::LLT<Eigen::Matrix2d> llt(m);
+      const bool newton = llt.info() == Eigen::Success && m.determinant() > 0.0;
+      if (newton) {
+        xi = llt.solve(g);
+      } else {
+        xi = g / (h.trace() + std::abs(f));
+      }
+      if (newton && xi.norm() <= kTrustedStepRad) {
+        n = (n + t * xi).normalized();
+        f = gap(n);
+        ++*steps;
+        if (xi.norm() <= kStepRad) break;
+        continue;
+      }
+      // Backtrack until F does not fall (F is C1 and the step an ascent direction). The full
+      // step's length decides convergence: a shortened step says nothing about it.
+      const double full_step = xi.norm();
+      bool accepted = false;
+      for (int halving = 0; halving < 60; ++halving) {
+        const Eigen::Vector3d trial = (n + t * xi).normalized();
+        const double f_trial = gap(trial);
+        if (f_trial >= f) {
+          n = trial;
+          f = f_trial;
+          accepted = true;
+          break;
+        }
+        xi *= 0.5;
+      }
+      if (!accepted) break;
+      ++*steps;
+      if (full_step <= kStepRad) break;
+    }
+    *value = f;
+    return n;
+  }
+
+ private:
+  const LensGeometry& lens_a_;
+  const LensPose& pose_a_;
+  const LensGeometry& lens_b_;
+  const LensPose& pose_b_;
+};
+
+}  // namespace
+
+double lens_pair_gap_along(const LensGeometry& lens_a, const LensPose& pose_a,
+                           const LensGeometry& lens_b, const LensPose& pose_b,
+                           const Eigen::Vector3d& n) {
+  return PairProblem(lens_a, pose_a, lens_b, pose_b).gap(n);
+}
+
+LensPairContact lens_pair_contact_along(const LensGeometry& lens_a, const LensPose& pose_a,
+                                        const LensGeometry& lens_b, const LensPose& pose_b,
+                                        const Eigen::Vector3d& n) {
+  return PairProblem(lens_a, pose_a, lens_b, pose_b).contact(n);
+}
+
+LensPairContact lens_pair_distance(const LensGeometry& lens_a, const LensPose& pose_a,
+                                   const LensGeometry& lens_b, const LensPose& pose_b) {
+  const PairProblem problem(lens_a, pose_a, lens_b, pose_b);
+  const Eigen::Vector3d& xa = pose_a.center_world;
+  const Eigen::Vector3d& xb = pose_b.center_world;
+  const Eigen::Vector3d& ba = pose_a.axis_world;
+  const Eigen::Vector3d& bb = pose_b.axis_world;
+
+  // Closed-form candidates, one per pair of features: they are exact when their features are
+  // the closest ones, and good starts otherwise.
+  std::vector<Eigen::Vector3d> candidates;
+  auto add = [&](const Eigen::Vector3d& v) {
+    const double length = v.norm();
+    if (length > 0.0 && std::isfinite(length)) candidates.push_back(v / length);
+  };
+  add(xb - xa);
+  for (int sa : {1, -1}) {
+    const Eigen::Vector3d sphere_a = xa + (sa * lens_a.sphere_offset()) * ba;
+    for (int sb : {1, -1}) {  // cap-cap: the line through the two sphere centres
+      add(xb + (sb * lens_b.sphere_offset()) * bb - sphere_a);
+    }
+    add(nearest_rim_point(lens_b, pose_b, sphere_a) - sphere_a);  // cap of A - rim of B
+  }
+  for (int sb : {1, -1}) {  // rim of A - cap of B
+    const Eigen::Vector3d sphere_b = xb + (sb * lens_b.sphere_offset()) * bb;
+    add(sphere_b - nearest_rim_point(lens_a, pose_a, sphere_b));
+  }
+  // The rim-rim pair has no closed form; its optimum is reached by the ascent from any
+  // positive start (when apart the positive maximum is unique).
+  double best_value = -kInfinity;
+  Eigen::Vector3d best_n = Eigen::Vector3d::UnitZ();
+  for (const Eigen::Vector3d& n : candidates) {
+    const double f = problem.gap(n);
+    if (f > best_value) {
+      best_value = f;
+      best_n = n;
+    }
+  }
+  int steps = 0;
+  double value = 0.0;
+  if (best_value > 0.0) {
+    best_n = problem.ascend(best_n, &value, &steps);
+  } else {
+    // Overlapping or touching: several local maxima are possible. Polish the best candidate
+    // and the best well-separated local maxima of a Fibonacci sphere of directions.
+    std::vector<std::pair<double, Eigen::Vector3d>> starts;
+    for (const Eigen::Vector3d& n : candidates) starts.emplace_back(problem.gap(n), n);
+    const double golden = M_PI * (3.0 - std::sqrt(5.0));
+    for (int k = 0; k < kSphereStarts; ++k) {
+      const double z = 1.0 - (2.0 * k + 1.0) / kSphereStarts;
+      const double r = std::sqrt(1.0 - z * z);
+      const Eigen::Vector3d n(r * std::cos(golden * k), r * std::sin(golden * k), z);
+      starts.emplace_back(problem.gap(n), n);
+    }
+    std::sort(starts.begin(), starts.end(),
+              [](const auto& p, const auto& q) { return p.first > q.first; });
+    std::vector<Eigen::Vector3d> chosen;
+    for (const auto& start : starts) {
+      bool distinct = true;
+      for (const Eigen::Vector3d& c : chosen) {
+        distinct = distinct && c.dot(start.second) < std::cos(kDistinctRad);
+      }
+      if (!distinct) continue;
+      chosen.push_back(start.second);
+      if (static_cast<int>(chosen.size()) == kPolishedStarts) break;
+    }
+    best_value = -kInfinity;
+    for (const Eigen::Vector3d& start : chosen) {
+      const Eigen::Vector3d n = problem.ascend(start, &value, &steps);
+      if (value > best_value) {
+        best_value = value;
+        best_n = n;
+      }
+    }
+  }
+  LensPairContact result = problem.contact(best_n);
+  result.newton_steps = steps;
+  return result;
+}
+
+}  // namespace virtual_go

@@ -1,0 +1,287 @@
+// Two free stones colliding, against physics written here: conservation of linear momentum and
+// of angular momentum about a fixed point, Newton's cradle pair (equal masses, frictionless,
+// e* = 1 exchange their velocities), the central impact's closed form with friction (normal
+// rebound -e* u_n-, slip decelerating at mu K_tt), the eccentric frictionless impact (Stronge's
+// coefficient gives u_n+ = -e* u_n- and dE = -(1 - e*^2) u_n-^2 / (2 K_nn)), and 10^4 random
+// impacts that never gain energy. Energies and K are computed here from the states.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <random>
+
+#include "virtual_go/body/rigid_body.h"
+#include "virtual_go/common/validation.h"
+#include "virtual_go/contact/pair_impact.h"
+#include "virtual_go/geometry/lens_pair_distance.h"
+
+namespace vg = virtual_go;
+
+namespace {
+
+constexpr double kAa = 0.0111, kAb = 0.01095, kC = 0.0046;
+
+struct Body {
+  double m, i1, i3;
+};
+
+// The test's own world inertia, angular velocity and kinetic energy of an axisymmetric body.
+Eigen::Matrix3d inertia_world(const Body& body, const Eigen::Quaterniond& q) {
+  const Eigen::Matrix3d r = q.toRotationMatrix();
+  return r * Eigen::Vector3d(body.i1, body.i1, body.i3).asDiagonal() * r.transpose();
+}
+double kinetic_energy(const Body& body, const vg::RigidBodyState& s) {
+  const Eigen::Vector3d omega =
+      inertia_world(body, s.orientation).inverse() * s.angular_momentum_world;
+  return 0.5 * body.m * s.velocity_world.squaredNorm() + 0.5 * omega.dot(s.angular_momentum_world);
+}
+Eigen::Vector3d point_velocity(const Body& body, const vg::RigidBodyState& s,
+                               const Eigen::Vector3d& p) {
+  const Eigen::Vector3d omega =
+      inertia_world(body, s.orientation).inverse() * s.angular_momentum_world;
+  return s.velocity_world + omega.cross(p - s.position_world);
+}
+// n . K n for the pair: 1/m_A + 1/m_B + sum (r x n) . I^-1 (r x n).
+double normal_response(const Body& a, const vg::RigidBodyState& sa, const Body& b,
+                       const vg::RigidBodyState& sb, const Eigen::Vector3d& p,
+                       const Eigen::Vector3d& n) {
+  const Eigen::Vector3d ra = (p - sa.position_world).cross(n),
+                        rb = (p - sb.position_world).cross(n);
+  return 1 / a.m + 1 / b.m + ra.dot(inertia_world(a, sa.orientation).inverse() * ra) +
+         rb.dot(inertia_world(b, sb.orientation).inverse() * rb);
+}
+// Angular momentum of both stones about the world origin.
+Eigen::Vector3d total_angular_momentum(const Body& a, const vg::RigidBodyState& sa, const Body& b,
+                                       const vg::RigidBodyState& sb) {
+  return sa.angular_momentum_world + sa.position_world.cross(a.m * sa.velocity_world) +
+         sb.angular_momentum_world + sb.position_world.cross(b.m * sb.velocity_world);
+}
+
+struct Fixture {
+  vg::LensShape shape_a{2 * kAa, 2 * kC}, shape_b{2 * kAb, 2 * kC};
+  vg::LensGeometry lens_a{shape_a}, lens_b{shape_b};
+  vg::MassProperties mp_a = vg::MassProperties::of_lens(shape_a, 2700.0);
+  vg::MassProperties mp_b = vg::MassProperties::of_lens(shape_b, 2700.0);
+  vg::MotionModel model_a{vg::MotionModelKind::rigid_body, mp_a};
+  vg::MotionModel model_b{vg::MotionModelKind::rigid_body, mp_b};
+  Body body_a{mp_a.mass(), mp_a.principal_moments_body().x(), mp_a.principal_moments_body().z()};
+  Body body_b{mp_b.mass(), mp_b.principal_moments_body().x(), mp_b.principal_moments_body().z()};
+  std::mt19937 rng{99};
+  std::normal_distribution<double> normal{0.0, 1.0};
+  std::uniform_real_distribution<double> uniform{0.0, 1.0};
+
+  Eigen::Vector3d random_unit() {
+    return Eigen::Vector3d(normal(rng), normal(rng), normal(rng)).normalized();
+  }
+  Eigen::Quaterniond random_orientation() {
+    return Eigen::Quaterniond(Eigen::AngleAxisd(M_PI * uniform(rng), random_unit()));
+  }
+  vg::RigidBodyState with_omega(const vg::MotionModel& model, vg::RigidBodyState s,
+                                const Eigen::Vector3d& omega) {
+    return vg::with_angular_velocity_world(model, s, omega);
+  }
+};
+
+}  // namespace
+
+TEST(PairImpact, EqualMassesFrictionlessElasticExchangeVelocities) {
+  Fixture f;
+  vg::ContactMaterial elastic;
+  elastic.restitution = 1.0;
+  elastic.friction = 0.0;
+  vg::RigidBodyState a, b;
+  b.position_world = Eigen::Vector3d(2 * kAa, 0, 0);
+  a.velocity_world = Eigen::Vector3d(0.7, 0, 0);
+  const vg::PairImpact imp = vg::resolve_pair_impact(
+      f.model_a, a, f.model_a, b, Eigen::Vector3d(kAa, 0, 0), Eigen::Vector3d::UnitX(), elastic);
+  EXPECT_NEAR(imp.state_a.velocity_world.norm(), 0.0, 1e-15);
+  EXPECT_NEAR((imp.state_b.velocity_world - a.velocity_world).norm(), 0.0, 1e-15);
+  EXPECT_NEAR(imp.state_a.angular_momentum_world.norm(), 0.0, 1e-20);
+  EXPECT_NEAR(imp.energy_change_j, 0.0, 1e-18);
+  // A cradle pair with e* < 1: v_A+ = (1 - e) v / 2, v_B+ = (1 + e) v / 2 for equal masses.
+  vg::ContactMaterial half = elastic;
+  half.restitution = 0.5;
+  const vg::PairImpact h = vg::resolve_pair_impact(
+      f.model_a, a, f.model_a, b, Eigen::Vector3d(kAa, 0, 0), Eigen::Vector3d::UnitX(), half);
+  EXPECT_NEAR(h.state_a.velocity_world.x(), 0.25 * 0.7, 1e-15);
+  EXPECT_NEAR(h.state_b.velocity_world.x(), 0.75 * 0.7, 1e-15);
+}
+
+TEST(PairImpact, CentralObliqueImpactIsTheClosedForm) {
+  // Black and white flat, rim to rim along x (the lever arms lie along n: K_tn = 0), closing at
+  // 0.8 m/s with a vertical slip w: u_n+ = -e u_n-, and the slip falls linearly at mu k_t per
+  // unit normal impulse (k_t = 1/m_A + 1/m_B + a_A^2/I1_A + a_B^2/I1_B for a vertical slip)
+  // until it sticks.
+  Fixture f;
+  for (double w : {0.05, 0.3, 2.0}) {
+    for (double mu : {0.1, 0.5}) {
+      for (double e : {0.0, 0.5, 1.0}) {
+        vg::ContactMaterial mat;
+        mat.restitution = e;
+        mat.friction = mu;
+        vg::RigidBodyState a, b;
+        b.position_world = Eigen::Vector3d(kAa + kAb, 0, 0);
+        a.velocity_world = Eigen::Vector3d(0.5, 0, 0);
+        b.velocity_world = Eigen::Vector3d(-0.3, 0, w);
+        const Eigen::Vector3d p(kAa, 0, 0);
+        const vg::PairImpact imp =
+            vg::resolve_pair_impact(f.model_a, a, f.model_b, b, p, Eigen::Vector3d::UnitX(), mat);
+        const double knn = 1 / f.body_a.m + 1 / f.body_b.m;
+        const double kt = knn + kAa * kAa / f.body_a.i1 + kAb * kAb / f.body_b.i1;
+        const double pn = (1 + e) * 0.8 / knn;
+        const double slip = std::max(0.0, w - mu * kt * pn);
+        const Eigen::Vector3d u_after =
+            point_velocity(f.body_b, imp.state_b, p) - point_velocity(f.body_a, imp.state_a, p);
+        EXPECT_NEAR(u_after.x(), e * 0.8, 1e-14) << w << " " << mu << " " << e;
+        EXPECT_NEAR(u_after.z(), slip, 1e-14) << w << " " << mu << " " << e;
+        EXPECT_NEAR(u_after.y(), 0.0, 1e-15);
+        EXPECT_NEAR(imp.normal_impulse_ns, pn, 1e-15);
+        EXPECT_EQ(imp.stuck, slip == 0.0) << w << " " << mu << " " << e;
+      }
+    }
+  }
+}
+
+TEST(PairImpact, EccentricFrictionlessReproducesTheEnergeticCoefficient) {
+  // Without friction P = p n: u_n grows linearly with p at K_nn, so W_r = -e*^2 W_c gives
+  // u_n+ = -e* u_n- and dE = -(1 - e*^2) u_n-^2 / (2 K_nn), with K_nn computed here.
+  Fixture f;
+  double worst_ratio = 0.0, worst_energy = 0.0;
+  for (int k = 0; k < 2000; ++k) {
+    vg::RigidBodyState a, b;
+    a.orientation = f.random_orientation();
+    b.orientation = f.random_orientation();
+    b.position_world = Eigen::Vector3d(0.01, 0.02, 0.005);
+    const vg::LensPairContact c =
+        vg::lens_pair_distance(f.lens_a, vg::lens_pose(a), f.lens_b, vg::lens_pose(b));
+    b.position_world -= c.gap_m * c.normal_world;  // touching
+    const Eigen::Vector3d p = c.point_a_world;
+    a = f.with_omega(f.model_a, a, 50.0 * f.random_unit());
+    b = f.with_omega(f.model_b, b, 50.0 * f.random_unit());
+    a.velocity_world = f.random_unit();
+    b.velocity_world = f.random_unit();
+    const Eigen::Vector3d& n = c.normal_world;
+    const double un = n.dot(point_velocity(f.body_b, b, p) - point_velocity(f.body_a, a, p));
+    if (!(un < -1e-3)) continue;
+    vg::ContactMaterial mat;
+    mat.friction = 0.0;
+    mat.restitution = f.uniform(f.rng);
+    const vg::PairImpact imp = vg::resolve_pair_impact(f.model_a, a, f.model_b, b, p, n, mat);
+    const double un_after =
+        n.dot(point_velocity(f.body_b, imp.state_b, p) - point_velocity(f.body_a, imp.state_a, p));
+    worst_ratio = std::max(worst_ratio, std::abs(un_after / un + mat.restitution));
+    const double knn = normal_response(f.body_a, a, f.body_b, b, p, n);
+    const double de = kinetic_energy(f.body_a, imp.state_a) +
+                      kinetic_energy(f.body_b, imp.state_b) - kinetic_energy(f.body_a, a) -
+                      kinetic_energy(f.body_b, b);
+    const double expected = -(1 - mat.restitution * mat.restitution) * un * un / (2 * knn);
+    // Relative to the total kinetic energy: dE is a difference of totals, whose round-off is
+    // ~1e-16 of them.
+    const double total = kinetic_energy(f.body_a, a) + kinetic_energy(f.body_b, b);
+    worst_energy = std::max(worst_energy, std::abs(de - expected) / total);
+  }
+  std::printf(
+      "[ measured ] eccentric frictionless: |u_n+/u_n- + e*| max %.3g, dE error %.3g of "
+      "the kinetic energy\n",
+      worst_ratio, worst_energy);
+  EXPECT_LT(worst_ratio, 1e-12);
+  EXPECT_LT(worst_energy, 1e-12);
+}
+
+TEST(PairImpact, RandomImpactsConserveMomentumAndNeverGainEnergy) {
+  // 10^4 random impacts of a black and a white stone touching in random poses (the contact from
+  // lens_pair_distance), tumbling at up to 60 rad/s, e* in [0, 1], mu in [0, 1].
+  Fixture f;
+  int impacts = 0, gains = 0;
+  double worst_gain = -1.0, worst_momentum = 0.0, worst_angular = 0.0, worst_formula = 0.0;
+  double total_steps = 0.0;
+  int stuck = 0;
+  while (impacts < 10000) {
+    vg::RigidBodyState a, b;
+    a.position_world = 0.01 * f.random_unit();
+    a.orientation = f.random_orientation();
+    b.orientation = f.random_orientation();
+    b.position_world = a.position_world + 0.03 * f.random_unit();
+    const vg::LensPairContact c =
+        vg::lens_pair_distance(f.lens_a, vg::lens_pose(a), f.lens_b, vg::lens_pose(b));
+    b.position_world -= c.gap_m * c.normal_world;
+    const Eigen::Vector3d p = 0.5 * (c.point_a_world + c.point_b_world - c.gap_m * c.normal_world);
+    a = f.with_omega(f.model_a, a, 60.0 * f.uniform(f.rng) * f.random_unit());
+    b = f.with_omega(f.model_b, b, 60.0 * f.uniform(f.rng) * f.random_unit());
+    a.velocity_world = f.uniform(f.rng) * f.random_unit();
+    b.velocity_world = f.uniform(f.rng) * f.random_unit();
+    const Eigen::Vector3d& n = c.normal_world;
+    if (!(n.dot(point_velocity(f.body_b, b, p) - point_velocity(f.body_a, a, p)) < 0.0)) continue;
+    vg::ContactMaterial mat;
+    mat.restitution = f.uniform(f.rng);
+    mat.friction = f.uniform(f.rng);
+    if (impacts % 10 == 0) mat.restitution = 1.0;
+    const vg::PairImpact imp = vg::resolve_pair_impact(f.model_a, a, f.model_b, b, p, n, mat);
+    ++impacts;
+    const double e_before = kinetic_energy(f.body_a, a) + kinetic_energy(f.body_b, b);
+    const double de =
+        kinetic_energy(f.body_a, imp.state_a) + kinetic_energy(f.body_b, imp.state_b) - e_before;
+    // Round-off of energies of ~1e-2 J: 1e-15 relative.
+    if (de > 1e-15 * e_before) ++gains;
+    worst_gain = std::max(worst_gain, de / e_before);
+    worst_formula = std::max(worst_formula, std::abs(de - imp.energy_change_j) / e_before);
+    const Eigen::Vector3d momentum_before =
+        f.body_a.m * a.velocity_world + f.body_b.m * b.velocity_world;
+    const Eigen::Vector3d momentum_after =
+        f.body_a.m * imp.state_a.velocity_world + f.body_b.m * imp.state_b.velocity_world;
+    const double momentum_scale = f.body_a.m * a.velocity_world.norm() +
+                                  f.body_b.m * b.velocity_world.norm() + imp.impulse_world.norm();
+    worst_momentum =
+        std::max(worst_momentum, (momentum_after - momentum_before).norm() / momentum_scale);
+    const Eigen::Vector3d l_before = total_angular_momentum(f.body_a, a, f.body_b, b);
+    const Eigen::Vector3d l_after =
+        total_angular_momentum(f.body_a, imp.state_a, f.body_b, imp.state_b);
+    const double l_scale =
+        a.angular_momentum_world.norm() + b.angular_momentum_world.norm() + 0.05 * momentum_scale;
+    worst_angular = std::max(worst_angular, (l_after - l_before).norm() / l_scale);
+    EXPECT_LE(imp.energy_change_j, 0.0);
+    EXPECT_GE(imp.normal_velocity_after_mps, -1e-12);  // they do not keep approaching
+    total_steps += imp.slip_steps;
+    stuck += imp.stuck;
+  }
+  std::printf(
+      "[ measured ] %d random impacts: %d energy gains above 1e-15 relative (largest dE/E %.3g); "
+      "momentum error %.3g, angular momentum error %.3g (relative); |dE - formula| %.3g of E; "
+      "%d stuck, slip steps mean %.1f\n",
+      impacts, gains, worst_gain, worst_momentum, worst_angular, worst_formula, stuck,
+      total_steps / impacts);
+  EXPECT_EQ(gains, 0);
+  EXPECT_LT(worst_momentum, 1e-15);
+  EXPECT_LT(worst_angular, 1e-15);
+  EXPECT_LT(worst_formula, 1e-13);
+}
+
+TEST(PairImpact, SeparatingAndBadInput) {
+  Fixture f;
+  vg::RigidBodyState a, b;
+  b.position_world = Eigen::Vector3d(kAa + kAb, 0, 0);
+  b.velocity_world = Eigen::Vector3d(0.1, 0, 0);
+  const vg::PairImpact imp = vg::resolve_pair_impact(
+      f.model_a, a, f.model_b, b, Eigen::Vector3d(kAa, 0, 0), Eigen::Vector3d::UnitX(), {});
+  EXPECT_TRUE(imp.separating);
+  EXPECT_EQ(imp.state_a, a);
+  EXPECT_EQ(imp.state_b, b);
+  b.velocity_world.y() = std::nan("");
+  try {
+    vg::resolve_pair_impact(f.model_a, a, f.model_b, b, Eigen::Vector3d(kAa, 0, 0),
+                            Eigen::Vector3d::UnitX(), {});
+    FAIL();
+  } catch (const vg::InvalidArgument& e) {
+    EXPECT_EQ(e.field().rfind("b/", 0), 0u) << e.field();
+  }
+  b.velocity_world.y() = 0.0;
+  EXPECT_THROW(vg::resolve_pair_impact(f.model_a, a, f.model_b, b, Eigen::Vector3d(kAa, 0, 0),
+                                       Eigen::Vector3d::Zero(), {}),
+               vg::InvalidArgument);
+  vg::ContactMaterial bad;
+  bad.restitution = 1.5;
+  EXPECT_THROW(vg::resolve_pair_impact(f.model_a, a, f.model_b, b, Eigen::Vector3d(kAa, 0, 0),
+                                       Eigen::Vector3d::UnitX(), bad),
+               vg::InvalidArgument);
+}
