@@ -88,9 +88,10 @@ void check_material(const std::string& surface, const ContactMaterial& m) {
   check_between(prefix + "restitution", m.restitution, 0.0, 1.0, "");
   check_between(prefix + "friction", m.friction, 0.0, kMaxNodeFriction,
                 " (a sliding lens meets Painleve's paradox near 0.99)");
-  check_between(prefix + "rolling_resistance", m.rolling_resistance_m, 0.0, kMaxContactLengthM,
+  check_between(prefix + "rolling_resistance", m.rolling_resistance_m, 0.0,
+                kMaxNodeRollingResistanceM, " m");
+  check_between(prefix + "spinning_friction", m.spinning_friction_m, 0.0, kMaxNodeSpinningFrictionM,
                 " m");
-  check_between(prefix + "spinning_friction", m.spinning_friction_m, 0.0, kMaxContactLengthM, " m");
 }
 
 // A duration parameter on the dt grid: 0 = never, else longer than ~dt.

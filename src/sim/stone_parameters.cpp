@@ -149,11 +149,11 @@ std::vector<BoundParameter> bind_parameters(StoneConfig& c) {
        &c.board_material.friction},
       {{"contact/board/rolling_resistance", "m", "",
         "stone on board: rolling couple at most this times the normal force, 0 to " +
-            format_value(kMaxContactLengthM) + " (unmeasured placeholder)"},
+            format_value(kMaxNodeRollingResistanceM) + " (unmeasured placeholder)"},
        &c.board_material.rolling_resistance_m},
       {{"contact/board/spinning_friction", "m", "",
         "stone on board: spinning couple at most this times the normal force, 0 to " +
-            format_value(kMaxContactLengthM) + " (unmeasured placeholder)"},
+            format_value(kMaxNodeSpinningFrictionM) + " (unmeasured placeholder)"},
        &c.board_material.spinning_friction_m},
       {{"contact/table/restitution", "", "", "stone on table: as ~contact/board/restitution"},
        &c.table_material.restitution},

@@ -71,6 +71,19 @@ double NonsmoothContact::energy(const RigidBodyState& s) const {
   return body_energy(setup_.model, s, setup_.gravity_world);
 }
 
+double NonsmoothContact::scale_kinetic_energy(RigidBodyState& s, double energy_j) const {
+  // Velocity and angular momentum scaled together: the kinetic energy is quadratic in both, the
+  // potential energy and the pose do not change.
+  const double m = setup_.model.mass_properties().mass();
+  const double potential = -m * setup_.gravity_world.dot(s.position_world);
+  const double kinetic = energy(s) - potential;
+  const double target = energy_j - potential;
+  const double scale = target > 0.0 && kinetic > 0.0 ? std::sqrt(target / kinetic) : 0.0;
+  s.velocity_world *= scale;
+  s.angular_momentum_world *= scale;
+  return scale;
+}
+
 NonsmoothContact::SubStep NonsmoothContact::sub_step(const RigidBodyState& from, double h_s,
                                                      double energy_cap_j, bool commit) {
   SubStep out;
@@ -118,15 +131,8 @@ NonsmoothContact::SubStep NonsmoothContact::sub_step(const RigidBodyState& from,
   }
 
   // 4. The energy guard: never above the previous committed state's energy.
-  const double e = energy(s);
-  if (e > energy_cap_j) {
-    const double m = setup_.model.mass_properties().mass();
-    const double potential = -m * setup_.gravity_world.dot(s.position_world);
-    const double kinetic = e - potential;
-    const double target = energy_cap_j - potential;
-    const double scale = target > 0.0 && kinetic > 0.0 ? std::sqrt(target / kinetic) : 0.0;
-    s.velocity_world *= scale;
-    s.angular_momentum_world *= scale;
+  if (energy(s) > energy_cap_j) {
+    const double scale = scale_kinetic_energy(s, energy_cap_j);
     if (commit) {
       ++counters_.energy_guard_scalings;
       if (scale == 0.0) {
@@ -231,6 +237,13 @@ NonsmoothOutcome NonsmoothContact::advance(double t_end_s, long max_steps) {
   }
   ++counters_.samples;
   o.state = sub_step(state_, since, energy_, false).state;
+  // A partial sub-step can dissipate more than the lattice path it samples (its impulses act
+  // over a shorter step), so the next lattice state could come out above the sample: the
+  // sample's kinetic energy is raised to that state's energy (never above the last committed
+  // one), and the energies handed out never rise. The pose is the partial step's.
+  const double next_j =
+      energy(sub_step(state_, lattice(steps_ + 1) - lattice(steps_), energy_, false).state);
+  if (energy(o.state) < next_j) scale_kinetic_energy(o.state, next_j);
   return o;
 }
 

@@ -3,14 +3,14 @@
 // rolling on its rim; spins up to the node's bound of 500 rad/s; physically zero speeds,
 // denormal and tiny components) with random materials inside the node's limits
 // (sim/stone_config: restitution [0, 1], friction [0, 0.9], rolling and spinning lengths
-// [0, 1] m, Zeno height (0, 1e-3] m), each advanced 2 s on a 0.05 s grid with a work budget per
-// call. Checked in every sampled state and event: no exception, finite states, unit quaternions,
-// no overlap beyond 1e-12 m (measured by an independent BoardDistance query, the geometry tested
-// in test_board_distance), the energy never above the energy at the start beyond round-off
-// (1e-12 of |E| + m g a: the guards hold the energy at step ends; dense-output samples inside a
-// step are exact to ~1e-13 relative), and the work per state bounded.
-// VG_FUZZ_STATES sets the number of states: 1000 by default (~90 s here), 10000 for the issue's
-// figure (~15 min on two shared cores).
+// [0, 5e-4] and [0, 1] m, Zeno height (0, 1e-3] m), each advanced 2 s on a 0.05 s grid with a work
+// budget per call. Checked in every sampled state and event: no exception, finite states, unit
+// quaternions, no overlap beyond 1e-12 m (measured by an independent BoardDistance query, the
+// geometry tested in test_board_distance), the energy never above the energy at the start beyond
+// round-off (1e-12 of |E| + m g a: the guards hold the energy at step ends; dense-output samples
+// inside a step are exact to ~1e-13 relative), and the work per state bounded. VG_FUZZ_STATES sets
+// the number of states: 10^4 by default, as the issue asks (about 6 min on this 2-core machine when
+// quiet; 1000 took 38 s).
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
@@ -26,6 +26,7 @@
 
 #include "virtual_go/common/validation.h"
 #include "virtual_go/go/stone.h"
+#include "virtual_go/sim/stone_config.h"  // the node's material bounds (constants only)
 #include "virtual_go/world/world.h"
 #include "world/world_test_support.h"
 
@@ -66,9 +67,10 @@ struct Rng {
   }
   Quaterniond orientation() { return Quaterniond::UnitRandom(); }  // uses std::rand: seeded below
   // A length in [0, 1] m: zero, the limit, or log-uniform over 12 decades.
-  double length() {
+  // A couple arm in [0, max_m], its ends included.
+  double length(double max_m) {
     const double u = uniform(0, 1);
-    return u < 0.1 ? 0.0 : u < 0.2 ? 1.0 : log_uniform(1e-12, 1.0);
+    return u < 0.1 ? 0.0 : u < 0.2 ? max_m : log_uniform(1e-12, max_m);
   }
   // A component physically zero: denormal, 1e-300, 1e-200, or exactly 0.
   double tiny() {
@@ -84,8 +86,8 @@ vg::ContactMaterial random_material(Rng& rng) {
   m.restitution = u < 0.1 ? 0.0 : u < 0.2 ? 1.0 : rng.uniform(0, 1);
   const double f = rng.uniform(0, 1);
   m.friction = f < 0.1 ? 0.0 : f < 0.2 ? 0.9 : f < 0.25 ? 1e-300 : rng.uniform(0, 0.9);
-  m.rolling_resistance_m = rng.length();
-  m.spinning_friction_m = rng.length();
+  m.rolling_resistance_m = rng.length(vg::kMaxNodeRollingResistanceM);
+  m.spinning_friction_m = rng.length(vg::kMaxNodeSpinningFrictionM);
   return m;
 }
 
@@ -177,11 +179,12 @@ struct Worst {
   long max_work = 0, total_work = 0;
   double min_gap = std::numeric_limits<double>::infinity();
   double max_energy_rise = -std::numeric_limits<double>::infinity();  // relative to the scale
+  double max_step_rise = -std::numeric_limits<double>::infinity();    // over the state before
 };
 
 TEST(ContactFuzz, EveryRegimeEveryMaterialNoFailureNoStallNoOverlapNoEnergyGain) {
   const char* env = std::getenv("VG_FUZZ_STATES");
-  const long states = env ? std::atol(env) : 1000;
+  const long states = env ? std::atol(env) : 10000;
   ASSERT_GT(states, 0);
   std::srand(19);  // Quaterniond::UnitRandom
   Rng rng{std::mt19937_64(19)};
@@ -209,6 +212,7 @@ TEST(ContactFuzz, EveryRegimeEveryMaterialNoFailureNoStallNoOverlapNoEnergyGain)
     ASSERT_TRUE(world) << "state " << n << " (" << regime_name(regime) << ") never placed";
     const double e0 = worldtest::energy(s0);  // the test's own energy (world_test_support.h)
     const double scale = std::abs(e0) + mass * kG * kA;
+    double e_before = e0;
     const std::string what = "state " + std::to_string(n) + " (" + regime_name(regime) + ")";
     auto check = [&](const vg::RigidBodyState& s, double t) {
       ASSERT_TRUE(s.position_world.allFinite() && s.velocity_world.allFinite() &&
@@ -218,8 +222,14 @@ TEST(ContactFuzz, EveryRegimeEveryMaterialNoFailureNoStallNoOverlapNoEnergyGain)
       const vg::BoardContact c = board.nearest(s);
       worst.min_gap = std::min(worst.min_gap, c.lens.gap_m);
       ASSERT_GE(c.lens.gap_m, -1e-12) << what << " at t = " << t;
-      const double rise = (worldtest::energy(s) - e0) / scale;
+      // Asserted: never above the start. Reported: the largest rise over the state before
+      // (events and samples in time order), a known open finding of edge and table phases
+      // (up to 1.7e-8 of the scale in 4 of the first 1000 states).
+      const double energy = worldtest::energy(s);
+      const double rise = (energy - e0) / scale;
       worst.max_energy_rise = std::max(worst.max_energy_rise, rise);
+      worst.max_step_rise = std::max(worst.max_step_rise, (energy - e_before) / scale);
+      e_before = energy;
       ASSERT_LE(rise, 1e-12) << what << " at t = " << t;
     };
     long calls = 0;
@@ -249,10 +259,10 @@ TEST(ContactFuzz, EveryRegimeEveryMaterialNoFailureNoStallNoOverlapNoEnergyGain)
   std::printf(
       "contact fuzz: %ld states x 2 s in %.1f s; work per state max %ld, mean %.0f; %ld budget "
       "stops; %ld placements lifted; smallest gap %.3g m; largest energy rise %.3g of the "
-      "scale\n",
+      "scale over the start, %.3g over the state before\n",
       worst.states, wall, worst.max_work,
       static_cast<double>(worst.total_work) / static_cast<double>(worst.states), worst.budget_stops,
-      worst.rejected_placements, worst.min_gap, worst.max_energy_rise);
+      worst.rejected_placements, worst.min_gap, worst.max_energy_rise, worst.max_step_rise);
 }
 
 }  // namespace

@@ -42,8 +42,16 @@ constexpr double kMaxAutoResetPeriodS = 1e6;
 constexpr double kMaxNodeFriction = 0.9;
 // Largest ~contact/zeno_height: above it the cut-off would remove visible bounces.
 constexpr double kMaxNodeZenoHeightM = 1e-3;
-// Largest rolling-resistance or spinning-friction length: far beyond a stone's size.
-constexpr double kMaxContactLengthM = 1.0;
+// Largest ~contact/*/rolling_resistance. The rolling couple acts through the normal force; once
+// its arm is comparable with the stone it presses the contact point into the plane (as friction
+// does in Painleve's paradox) and the contact model breaks down: over random orientations of a
+// size-33 stone that starts at an arm of 0.9 mm for mu 0.9 (4.9 mm at mu 0.5, 9.9 mm without
+// friction), and at 1 m a sample's energy rose 1.5e-10 J (docs/physics.md, "Contact
+// materials"). Real arms are micrometres; the demo uses 50 um.
+constexpr double kMaxNodeRollingResistanceM = 5e-4;
+// Largest ~contact/*/spinning_friction: far beyond a stone's size. The spinning couple acts
+// about the normal, so it cannot press the contact point into the plane.
+constexpr double kMaxNodeSpinningFrictionM = 1.0;
 
 // Hard caps on the plausibility bounds below (a bound parameter beyond its cap is refused).
 // They make every number the node computes finite, whatever is requested within the bounds:

@@ -117,6 +117,9 @@ class NonsmoothContact {
     BoardContact contact[2];  // those contacts
   };
   SubStep sub_step(const RigidBodyState& from, double h_s, double energy_cap_j, bool commit);
+  // Scales velocity and angular momentum so that the energy becomes energy_j (0 when the
+  // potential energy alone exceeds it); returns the factor.
+  double scale_kinetic_energy(RigidBodyState& s, double energy_j) const;
   double lattice(long k) const { return t0_ + static_cast<double>(k) * options_.step_s; }
   double energy(const RigidBodyState& s) const;
   std::optional<NonsmoothOutcome> ending(const SubStep& step, double t);
