@@ -1,331 +1,11 @@
 #include "virtual_go/contact/impact.h"
 
-#include <Eigen/Eigenvalues>
-#include <array>
-#include <boost/math/tools/roots.hpp>
-#include <boost/numeric/odeint.hpp>
-#include <cmath>
-#include <limits>
+#include <algorithm>
 
+#include "impulse_process.h"
 #include "virtual_go/common/validation.h"
 
 namespace virtual_go {
-
-namespace {
-
-constexpr double kInfinity = std::numeric_limits<double>::infinity();
-// In units of the approach speed |u-|: below kApproach a closing slip is taken straight onto 0
-// (the direction has settled); below kSnapPerTolerance times the integration tolerance the
-// integrated u_t is noise, so it counts as 0 and is set to exactly 0 (by a tangential impulse
-// that removes energy, u_t^T K_tt^-1 u_t / 2).
-constexpr double kApproach = 1e-8;
-constexpr double kSnapPerTolerance = 100.0;
-// Largest velocity error (units of |u-|) accepted when a nearly straight slip is taken as straight.
-constexpr double kRay = 1e-13;
-
-using SlipState = std::array<double, 3>;  // tangential impulse (2), normal work
-
-Eigen::Vector3d any_perpendicular(const Eigen::Vector3d& e) {
-  const Eigen::Vector3d a =
-      std::abs(e.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
-  return (a - a.dot(e) * e).normalized();
-}
-
-Eigen::Matrix3d cross_matrix(const Eigen::Vector3d& r) {
-  Eigen::Matrix3d m;
-  m << 0.0, -r.z(), r.y(), r.z(), 0.0, -r.x(), -r.y(), r.x(), 0.0;
-  return m;
-}
-
-// Smallest d >= 0 with un d + an d^2 / 2 = work (work >= 0): the end of restitution on a phase
-// where du_n/dp = an is constant; +infinity if never.
-double restitution_step(double un, double an, double work) {
-  if (!(work > 0.0)) return 0.0;
-  const double disc = un * un + 2.0 * an * work;
-  if (disc < 0.0) return kInfinity;
-  const double denominator = un + std::sqrt(disc);
-  return denominator > 0.0 ? 2.0 * work / denominator : kInfinity;
-}
-
-// The impact in contact coordinates (t1, t2, n), scaled so that |u-| = 1 and K_nn = 1: the
-// impulse P, the velocity u = u- + K P and the normal work W are O(1) numbers.
-class ImpulseProcess {
- public:
-  ImpulseProcess(const Eigen::Matrix3d& k, const Eigen::Vector3d& u0, double mu, double e,
-                 const ImpactOptions& options)
-      : k_(k), u0_(u0), mu_(mu), e_(e), options_(options) {
-    if (mu_ > 0.0) classify_zero_slip();
-  }
-
-  void run() {
-    if (mu_ == 0.0) {  // frictionless: du/dp = K n throughout
-      advance_linear(Eigen::Vector2d::Zero(), kInfinity);
-      return;
-    }
-    namespace odeint = boost::numeric::odeint;
-    auto rhs = [this](const SlipState& y, SlipState& dy, double p) {
-      const Eigen::Vector3d u = velocity(p, Eigen::Vector2d(y[0], y[1]));
-      const double s = u.head<2>().norm();
-      const Eigen::Vector2d dir =
-          s > 0.0 ? Eigen::Vector2d(u.head<2>() / s) : Eigen::Vector2d(0, 0);
-      dy[0] = -mu_ * dir.x();
-      dy[1] = -mu_ * dir.y();
-      dy[2] = u.z();
-    };
-    using Stepper = odeint::runge_kutta_fehlberg78<SlipState>;
-    using Checker =
-        odeint::default_error_checker<double, odeint::array_algebra, odeint::default_operations>;
-// The stepper's scratch arrays are copied before their first use; GCC 12 warns about copying
-// them uninitialised, which is harmless (they are written before being read).
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-    odeint::controlled_runge_kutta<Stepper> controlled(
-        Checker(options_.tolerance, options_.tolerance));
-#pragma GCC diagnostic pop
-    Stepper plain;
-    // One plain step of length d from (y0, p0): the event functions are evaluated on these
-    // re-steps, as accurate as the accepted step itself.
-    auto step_from = [&](const SlipState& y0, double p0, double d) {
-      SlipState y;
-      plain.do_step(rhs, y0, p0, y, d);
-      return y;
-    };
-    auto locate = [&](auto&& event, double length) {
-      const double at_end = event(length);
-      if (at_end == 0.0 || !(length > 0.0)) return length;
-      std::uintmax_t iterations = 100;
-      const auto bracket = boost::math::tools::toms748_solve(
-          event, 0.0, length, event(0.0), at_end,
-          boost::math::tools::eps_tolerance<double>(std::numeric_limits<double>::digits - 2),
-          iterations);
-      return bracket.second;  // the side where the event has happened
-    };
-
-    double h = 1e-2;
-    for (;;) {
-      if (steps_ + rejected_ >= options_.max_steps) {
-        // The budget is spent (every pass above counts): the rest of the impact without
-        // friction, closed form. It only stops short of the law's dissipation, never adds energy.
-        finish_frictionless();
-        return;
-      }
-      const Eigen::Vector3d u = velocity(p_, pt_);
-      const Eigen::Vector2d ut = u.head<2>();
-      const double s = ut.norm();
-      if (s <= kSnapPerTolerance * options_.tolerance) {
-        // Onto u_t = 0 exactly: the tangential impulse that zeroes u_t at this p (a change of
-        // order kSnap / K_tt), then stick or re-slip, both straight phases to the end.
-        pt_ -= k_.topLeftCorner<2, 2>().ldlt().solve(ut);
-        stuck_ = can_stick_;
-        advance_linear(can_stick_ ? stick_rate_ : Eigen::Vector2d(-mu_ * ray_), kInfinity);
-        return;
-      }
-      const Eigen::Vector2d dir = ut / s;
-      const Eigen::Vector2d accel =
-          k_.topRightCorner<2, 1>() - mu_ * k_.topLeftCorner<2, 2>() * dir;
-      const double s_rate = dir.dot(accel);
-      const double to_zero = s_rate < 0.0 ? s / -s_rate : kInfinity;
-      // On a ray the slip direction stays fixed and the rest of the slip is a straight line,
-      // closed form; near u_t = 0 rays attract the slip and integrating them is stiff (steps
-      // ~ |u_t|). Closing in on u_t = 0 the direction still turns by about turn / |s_rate| on
-      // the way; moving out it settles on the unique re-slip ray. The switch is taken when
-      // |u_t| times that turn is below kRay.
-      const double turn = std::abs(dir.x() * accel.y() - dir.y() * accel.x());
-      if (s_rate < 0.0 && s * turn <= kRay * -s_rate) {
-        if (advance_linear(-mu_ * dir, to_zero)) return;
-        ++steps_;
-        continue;  // now at u_t ~ 0: snapped on the next pass
-      }
-      if (s_rate > 0.0 && !can_stick_ && s * (dir - ray_).norm() <= kRay) {
-        advance_linear(-mu_ * ray_, kInfinity);
-        return;
-      }
-      if (s <= kApproach && s_rate < 0.0) {
-        if (advance_linear(-mu_ * dir, to_zero)) return;
-        ++steps_;
-        continue;
-      }
-      h = std::min(h, 0.9 * to_zero);  // approach u_t = 0 geometrically, never through it
-      const SlipState y_old{pt_.x(), pt_.y(), w_};
-      const double p_old = p_;
-      SlipState y = y_old;
-      double p = p_old;
-      if (controlled.try_step(rhs, y, p, h) == odeint::fail) {
-        ++rejected_;
-        continue;
-      }
-      if (!(p > p_old)) {  // the step is below p's resolution: no progress is possible
-        finish_frictionless();
-        return;
-      }
-      const Eigen::Vector3d u_new = velocity(p, Eigen::Vector2d(y[0], y[1]));
-      if (u_new.head<2>().dot(ut) <= 0.0) {  // reached or crossed u_t = 0: shorter step
-        h = 0.5 * (p - p_old);
-        ++rejected_;
-        continue;
-      }
-      ++steps_;
-      const double length = p - p_old;
-      if (!compressed_ && u_new.z() >= 0.0) {
-        const double at = locate(
-            [&](double d) {
-              const SlipState yd = step_from(y_old, p_old, d);
-              return velocity(p_old + d, Eigen::Vector2d(yd[0], yd[1])).z();
-            },
-            length);
-        commit(step_from(y_old, p_old, at), p_old + at);
-        end_compression();
-        if (finished_) return;
-        continue;
-      }
-      if (compressed_ && y[2] >= w_target_) {
-        const double at =
-            locate([&](double d) { return step_from(y_old, p_old, d)[2] - w_target_; }, length);
-        commit(step_from(y_old, p_old, at), p_old + at);
-        finished_ = true;
-        return;
-      }
-      commit(y, p);
-    }
-  }
-
-  Eigen::Vector3d impulse() const { return Eigen::Vector3d(pt_.x(), pt_.y(), p_); }
-  Eigen::Vector3d compression_impulse() const {
-    return Eigen::Vector3d(pt_compression_.x(), pt_compression_.y(), p_compression_);
-  }
-  bool stuck() const { return stuck_; }
-  bool stuck_at_compression() const { return stuck_at_compression_; }
-  int steps() const { return steps_; }
-  bool frictionless_fallback() const { return fallback_; }
-
- private:
-  Eigen::Vector3d velocity(double p, const Eigen::Vector2d& pt) const {
-    return u0_ + k_ * Eigen::Vector3d(pt.x(), pt.y(), p);
-  }
-
-  void commit(const SlipState& y, double p) {
-    pt_ = Eigen::Vector2d(y[0], y[1]);
-    w_ = y[2];
-    p_ = p;
-  }
-
-  // What happens at u_t = 0 (the same all through the impact, K being constant): stick when
-  // the friction cone allows the impulse rate that keeps u_t = 0, else slip again along the ray.
-  void classify_zero_slip() {
-    const Eigen::Matrix2d ktt = k_.topLeftCorner<2, 2>();
-    const Eigen::Vector2d ktn = k_.topRightCorner<2, 1>();
-    stick_rate_ = -ktt.ldlt().solve(ktn);
-    can_stick_ = stick_rate_.norm() <= mu_;
-    if (can_stick_) return;
-    // K_tn = (l 1 + mu K_tt) s with |s| = 1: in K_tt's eigenbasis |s(l)| falls strictly from
-    // |K_tt^-1 K_tn| / mu > 1 at l = 0 to <= 1 at l = |K_tn|, so l is unique.
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(ktt);
-    const Eigen::Vector2d kappa = eigen.eigenvalues();
-    const Eigen::Vector2d kt = eigen.eigenvectors().transpose() * ktn;
-    auto excess = [&](double l) {
-      const double s0 = kt.x() / (mu_ * kappa.x() + l), s1 = kt.y() / (mu_ * kappa.y() + l);
-      return s0 * s0 + s1 * s1 - 1.0;
-    };
-    const double hi = ktn.norm();
-    if (!std::isfinite(excess(0.0)) || !(excess(hi) <= 0.0)) {
-      // mu so small that mu K_tt underflows next to K_tn: the ray is K_tn's direction (the
-      // limit l -> |K_tn|).
-      ray_ = ktn / hi;
-      return;
-    }
-    std::uintmax_t iterations = 100;
-    const auto bracket = boost::math::tools::toms748_solve(
-        excess, 0.0, hi, excess(0.0), excess(hi),
-        boost::math::tools::eps_tolerance<double>(std::numeric_limits<double>::digits - 2),
-        iterations);
-    const double l = 0.5 * (bracket.first + bracket.second);
-    const Eigen::Vector2d s_eigen(kt.x() / (mu_ * kappa.x() + l), kt.y() / (mu_ * kappa.y() + l));
-    ray_ = (eigen.eigenvectors() * s_eigen).normalized();
-  }
-
-  // The fallback: the impact goes on from where it is along K n (no tangential impulse) to the
-  // same end conditions. The energy balance dE = W - mu int |u_t| dp keeps its sign: the normal
-  // work still ends at (1 - e*^2) W_c and the friction work done so far is dissipative.
-  void finish_frictionless() {
-    fallback_ = true;
-    stuck_ = false;
-    advance_linear(Eigen::Vector2d::Zero(), kInfinity);
-  }
-
-  void move_linear(const Eigen::Vector2d& xi, double delta) {
-    const double un = velocity(p_, pt_).z();
-    const double an = k_.row(2).dot(Eigen::Vector3d(xi.x(), xi.y(), 1.0));
-    w_ += un * delta + 0.5 * an * delta * delta;
-    p_ += delta;
-    pt_ += xi * delta;
-  }
-
-  void end_compression() {
-    compressed_ = true;
-    w_target_ = (1.0 - e_ * e_) * w_;
-    p_compression_ = p_;
-    pt_compression_ = pt_;
-    stuck_at_compression_ = stuck_;
-    if (e_ == 0.0) finished_ = true;
-  }
-
-  // Along a constant tangential impulse rate xi for at most delta_max of normal impulse, through
-  // the end of compression; true when the impact has ended.
-  bool advance_linear(const Eigen::Vector2d& xi, double delta_max) {
-    const double an = k_.row(2).dot(Eigen::Vector3d(xi.x(), xi.y(), 1.0));
-    // A phase that would never end (a jam: the approach or the rebound never completes along
-    // xi) goes on frictionless instead, where an = K_nn = 1 ends both.
-    auto jammed = [&](double length) {
-      return length == kInfinity && delta_max == kInfinity && xi != Eigen::Vector2d::Zero();
-    };
-    for (;;) {
-      const double un = velocity(p_, pt_).z();
-      if (!compressed_) {
-        const double dc = un >= 0.0 ? 0.0 : (an > 0.0 ? -un / an : kInfinity);
-        if (jammed(dc)) {
-          finish_frictionless();
-          return true;
-        }
-        if (dc > delta_max) {
-          move_linear(xi, delta_max);
-          return false;
-        }
-        move_linear(xi, dc);
-        delta_max -= dc;
-        end_compression();
-        if (finished_) return true;
-        continue;
-      }
-      const double dr = restitution_step(un, an, w_target_ - w_);
-      if (jammed(dr)) {
-        finish_frictionless();
-        return true;
-      }
-      if (dr > delta_max) {
-        move_linear(xi, delta_max);
-        return false;
-      }
-      move_linear(xi, dr);
-      finished_ = true;
-      return true;
-    }
-  }
-
-  Eigen::Matrix3d k_;
-  Eigen::Vector3d u0_;
-  double mu_, e_;
-  ImpactOptions options_;
-  double p_ = 0.0, w_ = 0.0, w_target_ = 0.0, p_compression_ = 0.0;
-  Eigen::Vector2d pt_ = Eigen::Vector2d::Zero(), pt_compression_ = Eigen::Vector2d::Zero();
-  bool compressed_ = false, finished_ = false, stuck_ = false, stuck_at_compression_ = false;
-  bool can_stick_ = true;
-  Eigen::Vector2d stick_rate_ = Eigen::Vector2d::Zero();
-  Eigen::Vector2d ray_ = Eigen::Vector2d::Zero();  // the re-slip direction when !can_stick_
-  int steps_ = 0, rejected_ = 0;
-  bool fallback_ = false;
-};
-
-}  // namespace
 
 Eigen::Matrix3d impulse_response_world(const MotionModel& model,
                                        const Eigen::Quaterniond& orientation,
@@ -338,7 +18,7 @@ Eigen::Matrix3d impulse_response_world(const MotionModel& model,
     const Eigen::Matrix3d rot = orientation.toRotationMatrix();
     inverse_inertia = rot * mp.inverse_inertia_body() * rot.transpose();
   }
-  const Eigen::Matrix3d rx = cross_matrix(r);
+  const Eigen::Matrix3d rx = impulse_process::cross_matrix(r);
   Eigen::Matrix3d k = Eigen::Matrix3d::Identity() / mp.mass() - rx * inverse_inertia * rx;
   return 0.5 * (k + k.transpose());  // exactly symmetric
 }
@@ -371,53 +51,32 @@ Impact resolve_impact(const MotionModel& model, const RigidBodyState& before,
   result.contact_velocity_before_world = u;
   result.contact_velocity_after_world = u;
   result.normal_velocity_before_mps = result.normal_velocity_after_mps = u.dot(n);
-  // Everything below works on u / |u|_max: a velocity of 1e-300 m/s or a denormal one has a
-  // squared norm that underflows to 0, which would make the scaled process 0/0.
-  const double u_max = u.cwiseAbs().maxCoeff();
-  const Eigen::Vector3d u_unit = u_max > 0.0 ? Eigen::Vector3d(u / u_max) : u;
-  if (!(u_unit.dot(n) < 0.0)) {
+  const Eigen::Matrix3d k_world = impulse_response_world(model, state.orientation, r);
+  const impulse_process::ContactFrame frame = impulse_process::contact_frame(u, n, k_world);
+  if (!frame.approaching) {
     result.separating = true;
     return result;
   }
 
-  // Contact frame: t1 along the initial slip (any tangent when there is none), t2 = n x t1.
-  const Eigen::Vector3d u_t = u_unit - u_unit.dot(n) * n;
-  const Eigen::Vector3d t1 =
-      u_t.norm() > 1e-15 * u_unit.norm() ? Eigen::Vector3d(u_t.normalized()) : any_perpendicular(n);
-  Eigen::Matrix3d basis;
-  basis << t1, n.cross(t1), n;
-  const Eigen::Matrix3d k_world = impulse_response_world(model, state.orientation, r);
-  const Eigen::Matrix3d k = basis.transpose() * k_world * basis;
-  const Eigen::Vector3d uc_unit = basis.transpose() * u_unit;
-  const Eigen::Vector3d uc = basis.transpose() * u;
-  const double speed_unit = uc_unit.norm(), knn = k(2, 2);
-  const double impulse_scale = u_max * speed_unit / knn;  // N s per unit of the scaled impulse
-
-  ImpulseProcess process(k / knn, uc_unit / speed_unit, material.friction, material.restitution,
-                         options);
+  impulse_process::ImpulseProcess process(frame.k_scaled, frame.u_scaled, material.friction,
+                                          material.restitution, options);
   process.run();
-  Eigen::Vector3d pc = impulse_scale * process.impulse();
+  Eigen::Vector3d pc = frame.impulse_scale * process.impulse();
   bool stuck = process.stuck();
   // Zeno cut-off: a rebound lower than h_min ends the bouncing; the contact becomes sustained.
   const double g_n = -gravity_world.dot(n);
-  const double un_after = (uc + k * pc).z();
+  const double un_after = (frame.u + frame.k * pc).z();
   if (g_n > 0.0 && un_after * un_after < 2.0 * g_n * options.zeno_height_m) {
-    pc = impulse_scale * process.compression_impulse();
+    pc = frame.impulse_scale * process.compression_impulse();
     stuck = process.stuck_at_compression();
     result.sustained = true;
   }
-  // The law only dissipates (dE = (1 - e*^2) W_c - mu int |u_t| dp <= 0); the numerical slip
-  // integration and the snap onto u_t = 0 can leave a gain of round-off size where the exact dE
-  // is 0. Shortening the impulse along itself removes it: dE(k P) = k a + k^2 b / 2 with a =
-  // P . u- < 0, b = P^T K P > 0 is 0 at k = -2a/b < 1 and negative below, so this guard can only
-  // remove energy.
-  const double a = pc.dot(uc), b = pc.dot(k * pc);
-  if (a + 0.5 * b > 0.0 && b > 0.0) pc *= std::max(0.0, -2.0 * a / b);
+  pc *= impulse_process::energy_safe_scale(pc, frame.u, frame.k);
 
-  const Eigen::Vector3d impulse = basis * pc;
+  const Eigen::Vector3d impulse = frame.basis * pc;
   result.impulse_world = impulse;
   result.energy_change_j = impulse.dot(u) + 0.5 * impulse.dot(k_world * impulse);
-  result.compression_impulse_ns = impulse_scale * process.compression_impulse().z();
+  result.compression_impulse_ns = frame.impulse_scale * process.compression_impulse().z();
   result.normal_impulse_ns = pc.z();
   result.state.velocity_world = state.velocity_world + impulse / mass;
   result.state.angular_momentum_world = state.angular_momentum_world + r.cross(impulse);

@@ -3,9 +3,9 @@
 // as the independent variable, ended by Stronge's energetic coefficient (docs/physics.md,
 // "Impact"). It sees only the contact's impulse response K (the sum over the bodies) and the
 // approach velocity u-, in contact coordinates (t1, t2, n) scaled so that |u-| = 1, K_nn = 1.
-//
-// Moved here unchanged from impact.cpp so that the pair impact reuses it; impact.cpp still holds
-// its own copy until the two branches working on src/contact merge (then it includes this).
+// Never fails: the slip integration's work is bounded by ImpactOptions::max_steps, and a spent
+// budget, a step below p's resolution or a jam hands the rest to a frictionless closed form that
+// cannot add energy (Impact::frictionless_fallback).
 #pragma once
 
 #include <Eigen/Core>
@@ -15,9 +15,7 @@
 #include <boost/numeric/odeint.hpp>
 #include <cmath>
 #include <limits>
-#include <string>
 
-#include "virtual_go/common/validation.h"
 #include "virtual_go/contact/impact.h"
 
 namespace virtual_go {
@@ -45,6 +43,41 @@ inline Eigen::Matrix3d cross_matrix(const Eigen::Vector3d& r) {
   Eigen::Matrix3d m;
   m << 0.0, -r.z(), r.y(), r.z(), 0.0, -r.x(), -r.y(), r.x(), 0.0;
   return m;
+}
+
+// The process's coordinates for the approach velocity u_world (m/s) at the unit normal n_world
+// with the impulse response k_world (1/kg). Everything works on u / max|u_i|: a velocity of 1e-300
+// m/s or a denormal one has a squared norm that underflows to 0, which would make the scaled
+// process 0/0.
+struct ContactFrame {
+  bool approaching = false;    // u_n- < 0; when false nothing else is set
+  Eigen::Matrix3d basis;       // columns t1 (along the initial slip, any tangent if none), t2, n
+  Eigen::Matrix3d k;           // K in contact coordinates, 1/kg
+  Eigen::Vector3d u;           // u- in contact coordinates, m/s
+  Eigen::Matrix3d k_scaled;    // K / K_nn: the process's K
+  Eigen::Vector3d u_scaled;    // u- / |u-|: the process's u-
+  double impulse_scale = 0.0;  // N s per unit of the process's impulse, |u-| / K_nn
+};
+
+inline ContactFrame contact_frame(const Eigen::Vector3d& u_world, const Eigen::Vector3d& n_world,
+                                  const Eigen::Matrix3d& k_world) {
+  ContactFrame frame;
+  const double u_max = u_world.cwiseAbs().maxCoeff();
+  const Eigen::Vector3d u_unit = u_max > 0.0 ? Eigen::Vector3d(u_world / u_max) : u_world;
+  frame.approaching = u_unit.dot(n_world) < 0.0;
+  if (!frame.approaching) return frame;
+  const Eigen::Vector3d u_t = u_unit - u_unit.dot(n_world) * n_world;
+  const Eigen::Vector3d t1 = u_t.norm() > 1e-15 * u_unit.norm() ? Eigen::Vector3d(u_t.normalized())
+                                                                : any_perpendicular(n_world);
+  frame.basis << t1, n_world.cross(t1), n_world;
+  frame.k = frame.basis.transpose() * k_world * frame.basis;
+  frame.u = frame.basis.transpose() * u_world;
+  const Eigen::Vector3d uc_unit = frame.basis.transpose() * u_unit;
+  const double speed_unit = uc_unit.norm(), knn = frame.k(2, 2);
+  frame.k_scaled = frame.k / knn;
+  frame.u_scaled = uc_unit / speed_unit;
+  frame.impulse_scale = u_max * speed_unit / knn;
+  return frame;
 }
 
 // Smallest d >= 0 with un d + an d^2 / 2 = work (work >= 0): the end of restitution on a phase
@@ -102,7 +135,7 @@ class ImpulseProcess {
     };
     auto locate = [&](auto&& event, double length) {
       const double at_end = event(length);
-      if (at_end == 0.0) return length;
+      if (at_end == 0.0 || !(length > 0.0)) return length;
       std::uintmax_t iterations = 100;
       const auto bracket = boost::math::tools::toms748_solve(
           event, 0.0, length, event(0.0), at_end,
@@ -113,9 +146,11 @@ class ImpulseProcess {
 
     double h = 1e-2;
     for (;;) {
-      if (steps_ + rejected_ > options_.max_steps) {
-        throw IntegrationError("impact: the slip integration did not finish in " +
-                               std::to_string(options_.max_steps) + " steps");
+      if (steps_ + rejected_ >= options_.max_steps) {
+        // The budget is spent (every pass above counts): the rest of the impact without
+        // friction, closed form. It only stops short of the law's dissipation, never adds energy.
+        finish_frictionless();
+        return;
       }
       const Eigen::Vector3d u = velocity(p_, pt_);
       const Eigen::Vector2d ut = u.head<2>();
@@ -162,6 +197,10 @@ class ImpulseProcess {
         ++rejected_;
         continue;
       }
+      if (!(p > p_old)) {  // the step is below p's resolution: no progress is possible
+        finish_frictionless();
+        return;
+      }
       const Eigen::Vector3d u_new = velocity(p, Eigen::Vector2d(y[0], y[1]));
       if (u_new.head<2>().dot(ut) <= 0.0) {  // reached or crossed u_t = 0: shorter step
         h = 0.5 * (p - p_old);
@@ -200,6 +239,7 @@ class ImpulseProcess {
   bool stuck() const { return stuck_; }
   bool stuck_at_compression() const { return stuck_at_compression_; }
   int steps() const { return steps_; }
+  bool frictionless_fallback() const { return fallback_; }
 
  private:
   Eigen::Vector3d velocity(double p, const Eigen::Vector2d& pt) const {
@@ -230,6 +270,12 @@ class ImpulseProcess {
       return s0 * s0 + s1 * s1 - 1.0;
     };
     const double hi = ktn.norm();
+    if (!std::isfinite(excess(0.0)) || !(excess(hi) <= 0.0)) {
+      // mu so small that mu K_tt underflows next to K_tn: the ray is K_tn's direction (the
+      // limit l -> |K_tn|).
+      ray_ = ktn / hi;
+      return;
+    }
     std::uintmax_t iterations = 100;
     const auto bracket = boost::math::tools::toms748_solve(
         excess, 0.0, hi, excess(0.0), excess(hi),
@@ -238,6 +284,15 @@ class ImpulseProcess {
     const double l = 0.5 * (bracket.first + bracket.second);
     const Eigen::Vector2d s_eigen(kt.x() / (mu_ * kappa.x() + l), kt.y() / (mu_ * kappa.y() + l));
     ray_ = (eigen.eigenvectors() * s_eigen).normalized();
+  }
+
+  // The fallback: the impact goes on from where it is along K n (no tangential impulse) to the
+  // same end conditions. The energy balance dE = W - mu int |u_t| dp keeps its sign: the normal
+  // work still ends at (1 - e*^2) W_c and the friction work done so far is dissipative.
+  void finish_frictionless() {
+    fallback_ = true;
+    stuck_ = false;
+    advance_linear(Eigen::Vector2d::Zero(), kInfinity);
   }
 
   void move_linear(const Eigen::Vector2d& xi, double delta) {
@@ -261,10 +316,19 @@ class ImpulseProcess {
   // the end of compression; true when the impact has ended.
   bool advance_linear(const Eigen::Vector2d& xi, double delta_max) {
     const double an = k_.row(2).dot(Eigen::Vector3d(xi.x(), xi.y(), 1.0));
+    // A phase that would never end (a jam: the approach or the rebound never completes along
+    // xi) goes on frictionless instead, where an = K_nn = 1 ends both.
+    auto jammed = [&](double length) {
+      return length == kInfinity && delta_max == kInfinity && xi != Eigen::Vector2d::Zero();
+    };
     for (;;) {
       const double un = velocity(p_, pt_).z();
       if (!compressed_) {
         const double dc = un >= 0.0 ? 0.0 : (an > 0.0 ? -un / an : kInfinity);
+        if (jammed(dc)) {
+          finish_frictionless();
+          return true;
+        }
         if (dc > delta_max) {
           move_linear(xi, delta_max);
           return false;
@@ -276,6 +340,10 @@ class ImpulseProcess {
         continue;
       }
       const double dr = restitution_step(un, an, w_target_ - w_);
+      if (jammed(dr)) {
+        finish_frictionless();
+        return true;
+      }
       if (dr > delta_max) {
         move_linear(xi, delta_max);
         return false;
@@ -297,6 +365,7 @@ class ImpulseProcess {
   Eigen::Vector2d stick_rate_ = Eigen::Vector2d::Zero();
   Eigen::Vector2d ray_ = Eigen::Vector2d::Zero();  // the re-slip direction when !can_stick_
   int steps_ = 0, rejected_ = 0;
+  bool fallback_ = false;
 };
 
 // The law only dissipates; the numerical slip integration and the snap onto u_t = 0 can leave

@@ -49,34 +49,24 @@ PairImpact resolve_pair_impact(const MotionModel& model_a, const RigidBodyState&
   const Eigen::Vector3d u = contact_velocity(model_b, b, r_b) - contact_velocity(model_a, a, r_a);
   result.contact_velocity_before_world = result.contact_velocity_after_world = u;
   result.normal_velocity_before_mps = result.normal_velocity_after_mps = u.dot(n);
-  if (!(u.dot(n) < 0.0)) {
+  const Eigen::Matrix3d k_world = impulse_response_world(model_a, a.orientation, r_a) +
+                                  impulse_response_world(model_b, b.orientation, r_b);
+  const impulse_process::ContactFrame frame = impulse_process::contact_frame(u, n, k_world);
+  if (!frame.approaching) {
     result.separating = true;
     return result;
   }
 
-  // Contact frame: t1 along the initial slip (any tangent when there is none), t2 = n x t1.
-  const Eigen::Vector3d u_t = u - u.dot(n) * n;
-  const Eigen::Vector3d t1 = u_t.norm() > 1e-15 * u.norm() ? Eigen::Vector3d(u_t.normalized())
-                                                           : impulse_process::any_perpendicular(n);
-  Eigen::Matrix3d basis;
-  basis << t1, n.cross(t1), n;
-  const Eigen::Matrix3d k_world = impulse_response_world(model_a, a.orientation, r_a) +
-                                  impulse_response_world(model_b, b.orientation, r_b);
-  const Eigen::Matrix3d k = basis.transpose() * k_world * basis;
-  const Eigen::Vector3d uc = basis.transpose() * u;
-  const double speed = uc.norm(), knn = k(2, 2);
-  const double impulse_scale = speed / knn;  // N s per unit of the scaled impulse
-
-  impulse_process::ImpulseProcess process(k / knn, uc / speed, material.friction,
+  impulse_process::ImpulseProcess process(frame.k_scaled, frame.u_scaled, material.friction,
                                           material.restitution, options);
   process.run();
-  Eigen::Vector3d pc = impulse_scale * process.impulse();
-  pc *= impulse_process::energy_safe_scale(pc, uc, k);
+  Eigen::Vector3d pc = frame.impulse_scale * process.impulse();
+  pc *= impulse_process::energy_safe_scale(pc, frame.u, frame.k);
 
-  const Eigen::Vector3d impulse = basis * pc;
+  const Eigen::Vector3d impulse = frame.basis * pc;
   result.impulse_world = impulse;
   result.energy_change_j = impulse.dot(u) + 0.5 * impulse.dot(k_world * impulse);
-  result.compression_impulse_ns = impulse_scale * process.compression_impulse().z();
+  result.compression_impulse_ns = frame.impulse_scale * process.compression_impulse().z();
   result.normal_impulse_ns = pc.z();
   const double mass_a = model_a.mass_properties().mass(), mass_b = model_b.mass_properties().mass();
   result.state_b.velocity_world = b.velocity_world + impulse / mass_b;
@@ -88,6 +78,7 @@ PairImpact resolve_pair_impact(const MotionModel& model_a, const RigidBodyState&
   result.normal_velocity_after_mps = result.contact_velocity_after_world.dot(n);
   result.stuck = process.stuck();
   result.slip_steps = process.steps();
+  result.frictionless_fallback = process.frictionless_fallback();
   return result;
 }
 

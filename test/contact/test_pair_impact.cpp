@@ -3,7 +3,8 @@
 // e* = 1 exchange their velocities), the central impact's closed form with friction (normal
 // rebound -e* u_n-, slip decelerating at mu K_tt), the eccentric frictionless impact (Stronge's
 // coefficient gives u_n+ = -e* u_n- and dE = -(1 - e*^2) u_n-^2 / (2 K_nn)), and 10^4 random
-// impacts that never gain energy. Energies and K are computed here from the states.
+// impacts that never gain energy, also at 1e-300 m/s with denormal components. Energies and K are
+// computed here from the states.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -284,4 +285,67 @@ TEST(PairImpact, SeparatingAndBadInput) {
   EXPECT_THROW(vg::resolve_pair_impact(f.model_a, a, f.model_b, b, Eigen::Vector3d(kAa, 0, 0),
                                        Eigen::Vector3d::UnitX(), bad),
                vg::InvalidArgument);
+}
+
+// Issue 19 for two bodies: a relative contact velocity of 1e-300 m/s, alone or with denormal
+// components, has a squared norm that underflows to 0 (the unscaled process was 0/0). The impact
+// is homogeneous of degree 1 in the velocities, so the states rescaled by 2^996 (exact) must
+// show an ordinary impact: no energy gain, no approach left.
+TEST(PairImpact, PhysicallyZeroSpeedsNeverFailNorGainEnergy) {
+  Fixture f;
+  const auto rescaled = [](vg::RigidBodyState s) {
+    s.velocity_world = s.velocity_world.unaryExpr([](double x) { return std::ldexp(x, 996); });
+    s.angular_momentum_world =
+        s.angular_momentum_world.unaryExpr([](double x) { return std::ldexp(x, 996); });
+    return s;
+  };
+  int impacts = 0, with_denormals = 0;
+  while (impacts < 400) {
+    vg::RigidBodyState a, b;
+    a.orientation = f.random_orientation();
+    b.orientation = f.random_orientation();
+    b.position_world = 0.03 * f.random_unit();
+    const vg::LensPairContact c =
+        vg::lens_pair_distance(f.lens_a, vg::lens_pose(a), f.lens_b, vg::lens_pose(b));
+    b.position_world -= c.gap_m * c.normal_world;
+    const Eigen::Vector3d p = 0.5 * (c.point_a_world + c.point_b_world - c.gap_m * c.normal_world);
+    const Eigen::Vector3d& n = c.normal_world;
+    const double scale = 1e-300;
+    a = f.with_omega(f.model_a, a, 60.0 * scale * f.random_unit());
+    b = f.with_omega(f.model_b, b, 60.0 * scale * f.random_unit());
+    a.velocity_world = scale * f.random_unit();
+    b.velocity_world = a.velocity_world - scale * n;  // approaching at about 1e-300 m/s
+    const bool denormal = impacts % 2;
+    if (denormal) {  // denormal components: the tangential velocity, the spin
+      const Eigen::Vector3d t = n.unitOrthogonal();
+      b.velocity_world = a.velocity_world - scale * n + 1e-310 * t;
+      a.velocity_world.z() += 4.9e-324;
+      a.angular_momentum_world.x() = 1e-315;
+      b.angular_momentum_world.y() = -4.9e-324;
+    }
+    const double un_before =
+        n.dot(point_velocity(f.body_b, rescaled(b), p) - point_velocity(f.body_a, rescaled(a), p));
+    if (!(un_before < 0.0)) continue;
+    with_denormals += denormal;
+    vg::ContactMaterial mat;
+    mat.restitution = f.uniform(f.rng);
+    mat.friction = f.uniform(f.rng);
+    vg::PairImpact imp;
+    ASSERT_NO_THROW(imp = vg::resolve_pair_impact(f.model_a, a, f.model_b, b, p, n, mat))
+        << "impact " << impacts;
+    ++impacts;
+    ASSERT_FALSE(imp.separating) << "impact " << impacts;
+    const vg::RigidBodyState a0 = rescaled(a), b0 = rescaled(b);
+    const vg::RigidBodyState a1 = rescaled(imp.state_a), b1 = rescaled(imp.state_b);
+    ASSERT_TRUE(a1.velocity_world.allFinite() && a1.angular_momentum_world.allFinite() &&
+                b1.velocity_world.allFinite() && b1.angular_momentum_world.allFinite());
+    const double e_before = kinetic_energy(f.body_a, a0) + kinetic_energy(f.body_b, b0);
+    const double e_after = kinetic_energy(f.body_a, a1) + kinetic_energy(f.body_b, b1);
+    EXPECT_LE(e_after - e_before, 1e-13 * e_before) << "impact " << impacts;
+    EXPECT_LT(e_after, e_before) << "impact " << impacts;  // an impact at e* < 1 dissipates
+    const double un_after =
+        n.dot(point_velocity(f.body_b, b1, p) - point_velocity(f.body_a, a1, p));
+    EXPECT_GE(un_after, 1e-12 * un_before) << "impact " << impacts;
+  }
+  EXPECT_EQ(with_denormals, 200);
 }

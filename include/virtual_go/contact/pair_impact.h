@@ -33,16 +33,18 @@ struct PairImpact {
   double normal_velocity_after_mps = 0.0;
   Eigen::Vector3d contact_velocity_before_world = Eigen::Vector3d::Zero();  // u-, m/s
   Eigen::Vector3d contact_velocity_after_world = Eigen::Vector3d::Zero();   // u+, m/s
-  bool separating = false;  // u_n- >= 0: no impulse, states unchanged
-  bool stuck = false;       // the relative slip ended (u_t = 0) and stayed so
-  int slip_steps = 0;
+  bool separating = false;             // u_n- >= 0: no impulse, states unchanged
+  bool stuck = false;                  // the relative slip ended (u_t = 0) and stayed so
+  int slip_steps = 0;                  // accepted steps of the slip integration
+  bool frictionless_fallback = false;  // the slip integration could not finish (ImpactOptions)
 };
 
 // Resolves the impact of stones A and B touching at contact_point_world with the unit normal
 // normal_world pointing from A into B. Only options.tolerance and options.max_steps are used.
 // Throws InvalidArgument naming the field ("a/velocity", "contact normal", "material/friction",
-// ...) for non-finite input, a zero normal or a bad material; IntegrationError if the slip
-// integration does not finish.
+// ...) for non-finite input, a zero normal or a bad material, and never fails otherwise: the work
+// is bounded by options.max_steps, and every relative contact velocity is handled, 1e-300 m/s and
+// denormal components included (the process runs on u / max|u_i|).
 PairImpact resolve_pair_impact(const MotionModel& model_a, const RigidBodyState& before_a,
                                const MotionModel& model_b, const RigidBodyState& before_b,
                                const Eigen::Vector3d& contact_point_world,
