@@ -51,15 +51,17 @@ Eigen::Quaterniond require_unit_quaternion(const std::string& field, const Eigen
     throw InvalidArgument(field, field + " must be finite, got " + text());
   }
   const double norm = c.norm();
-  if (std::isinf(norm)) {
+  if (std::isinf(norm) || !(norm > 1e-9)) {
     // Coefficients near the largest double overflow the sum of squares, and even a scaled
     // norm overflows when |q| itself exceeds the largest double (dividing by it would give a
-    // zero quaternion). Divided by its largest coefficient first, q has a norm in [1, 2].
-    const Eigen::Vector4d scaled = c / c.cwiseAbs().maxCoeff();
+    // zero quaternion); tiny ones (1e-200, denormals) underflow it. Divided by its largest
+    // coefficient first, q has a norm in [1, 2]: any finite, non-zero size is normalised.
+    const double largest = c.cwiseAbs().maxCoeff();
+    if (!(largest > 0.0)) {
+      throw InvalidArgument(field, field + " must be a non-zero quaternion, got " + text());
+    }
+    const Eigen::Vector4d scaled = c / largest;
     return Eigen::Quaterniond(scaled / scaled.norm());
-  }
-  if (!(norm > 1e-9)) {
-    throw InvalidArgument(field, field + " must be a non-zero quaternion, got " + text());
   }
   return Eigen::Quaterniond(c / norm);
 }

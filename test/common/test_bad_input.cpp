@@ -2,6 +2,7 @@
 // is silently clamped, and a failed advance() leaves the caller's state untouched.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <limits>
 
 #include "support/physics_reference.h"
@@ -117,6 +118,16 @@ TEST(BadInput, StateMustBeFiniteWithANonZeroQuaternion) {
   expect_rejected([&] { vg::ExactMotion(setup, s); }, {"orientation"});
   s.orientation = Eigen::Quaterniond(kNan, 0, 0, 1);
   expect_rejected([&] { s.validated(); }, {"orientation", "nan"});
+  // Any finite, non-zero size is normalised, however small (found by the service fuzz: w 1e-100
+  // was refused as "non-zero" although the README promises this), denormals included.
+  for (const double w : {1e-100, 1e-200, 1e-310, 4.9e-324}) {
+    s = good_state(setup);
+    s.orientation = Eigen::Quaterniond(w, 0, 0, w);  // (w, x, y, z): 90 degrees about z
+    const vg::RigidBodyState v = s.validated();
+    EXPECT_DOUBLE_EQ(v.orientation.norm(), 1.0) << w;
+    EXPECT_NEAR(v.orientation.w(), std::sqrt(0.5), 1e-15) << w;
+    EXPECT_NEAR(v.orientation.z(), std::sqrt(0.5), 1e-15) << w;
+  }
   expect_rejected(
       [&] {
         vg::with_angular_velocity_world(setup.model, good_state(setup), {1, kNan, 0});
