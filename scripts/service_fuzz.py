@@ -10,7 +10,7 @@ spins up to ~max_angular_velocity, absurd-but-finite and invalid values) and mea
   stalls        the largest gap between consecutive /stone/pose messages (wall time of
                 arrival) and the longest service response; gaps over --stall-s are counted
   false applied an accepted call whose own ~events message (same reason, in call order,
-                stamped no earlier than the call) never arrives, or that a `held` event follows
+                arriving after the call was sent) never arrives, or that a `held` event follows
   held          `held` events
   SIGINT        wall time from SIGINT to the node's exit: once mid-burst on the 500 rad/s spin
                 scene (~initial/angular_velocity [0, 0, 500]) and once at the end of the fuzz
@@ -25,6 +25,7 @@ import argparse
 import math
 import os
 import random
+import re
 import signal
 import socket
 import subprocess
@@ -295,34 +296,41 @@ def max_gap(times, t_from=None, t_to=None):
     return gaps
 
 
-def match_events(calls, events):
-    """calls: accepted calls in order, each dict(reason, t_wall_sent). events: messages in
-    arrival order. Returns (missing calls, calls followed by held, segment gaps)."""
+def match_events(calls, arrivals):
+    """calls: accepted calls in order, each dict(reason, t_sent: monotonic). arrivals: (arrival
+    monotonic, message) in arrival order. An accepted call's own event is the next event of its
+    reason that arrives after the call was sent (events of requests come in call order). The
+    event stamps are not used to match: under load the physics step a request lands on may be
+    stamped before the call's wall time. Returns (calls without their event, calls followed by
+    held, events numbered by the node but not received, matched stamps out of order)."""
     request_reasons = {"set_state", "set_angular_velocity", "reset"}
+    events = [m for _, m in arrivals]
     missing, followed_by_held = [], []
     i = 0
     matched = []  # (call index, event index)
-    for k, ev in enumerate(events):
+    for k, (t_arrival, ev) in enumerate(arrivals):
         if ev.reason not in request_reasons:
             continue
-        stamp = ev.header.stamp.to_sec() + ev.time_offset
         j = i
         while j < len(calls) and not (calls[j]["reason"] == ev.reason and
-                                      stamp >= calls[j]["t_wall_sent"] - 1e-3):
+                                      t_arrival >= calls[j]["t_sent"]):
             j += 1
         if j == len(calls):
-            continue  # an event no accepted call explains (e.g. start)
+            continue  # an event no accepted call explains
         missing.extend(calls[i:j])
         matched.append((j, k))
         i = j + 1
     missing.extend(calls[i:])
+    stamps = [events[k].header.stamp.to_sec() + events[k].time_offset for _, k in matched]
+    out_of_order = sum(1 for a, b in zip(stamps, stamps[1:]) if b < a)
     for n, (j, k) in enumerate(matched):
         end = matched[n + 1][1] if n + 1 < len(matched) else len(events)
         if any(events[m].reason == "held" for m in range(k + 1, end)):
             followed_by_held.append(calls[j])
     segs = [ev.segment for ev in events]
-    seg_gaps = sum(1 for a, b in zip(segs, segs[1:]) if b != a + 1)
-    return missing, followed_by_held, seg_gaps
+    # Events the node numbered but this subscriber never got (lost between publisher and us).
+    seg_lost = sum(b - a - 1 for a, b in zip(segs, segs[1:]) if b > a + 1)
+    return missing, followed_by_held, seg_lost, out_of_order
 
 
 def call(proxies, srv, req, stats):
@@ -448,8 +456,8 @@ def main():
                     ok, msg, dt, tw = call(proxies, srv, req, stats)
                     results.append((srv, valid, label, ok, msg, dt))
                     if ok:
-                        accepted.append({"reason": srv, "t_wall_sent": tw, "label": label,
-                                         "req": req})
+                        accepted.append({"reason": srv, "t_sent": time.monotonic() - dt, "label": label,
+                                         "req": req, "burst": True})
                 bursts.append(time.monotonic() - tb)
                 sent += len(batch)
                 time.sleep(rng.uniform(0.0, 0.5))
@@ -458,7 +466,8 @@ def main():
                 ok, msg, dt, tw = call(proxies, srv, req, stats)
                 results.append((srv, valid, label, ok, msg, dt))
                 if ok:
-                    accepted.append({"reason": srv, "t_wall_sent": tw, "label": label, "req": req})
+                    accepted.append({"reason": srv, "t_sent": time.monotonic() - dt, "label": label, "req": req,
+                                     "burst": False})
                 sent += 1
                 # Mostly short pauses; sometimes long enough for landings, rolling and rest.
                 time.sleep(rng.choice([0.0, 0.002, 0.01, 0.03, 0.1]) if rng.random() < 0.97
@@ -475,7 +484,7 @@ def main():
         stalls = [g for g in gaps if g > args.stall_s]
         resp_times = [r[5] for r in results]
         ev_msgs = [e[1] for e in events]
-        missing, followed, seg_gaps = match_events(accepted, ev_msgs)
+        missing, followed, seg_gaps, out_of_order = match_events(accepted, events)
         held = [e for e in ev_msgs if e.reason == "held"]
         invalid_accepted = [r for r in results if not r[1] and r[3]]
         valid_refused = [r for r in results if r[1] and not r[3]]
@@ -532,11 +541,16 @@ def main():
               "response %.4f s (median %.4f s)" % (max(gaps) if gaps else float("nan"),
                                                   args.stall_s, len(stalls), max(resp_times),
                                                   sorted(resp_times)[len(resp_times) // 2]))
-        print("events: %d (%s); segment numbers skipped in arrival: %d; time_jump events: %d"
+        print("events: %d (%s); events numbered by the node but never received (segment gaps): %d; "
+              "time_jump events: %d"
               % (len(ev_msgs), ", ".join("%s %d" % kv for kv in sorted(reasons.items())),
                  seg_gaps, len(jumps)))
         print("false applied: %d (accepted without their own event: %d; followed by held: %d)"
               % (len(missing) + len(followed), len(missing), len(followed)))
+        print("  of those without their event: %d sent in bursts, %d paced; request events "
+              "stamped before the one before: %d"
+              % (sum(1 for c in missing if c["burst"]), sum(1 for c in missing if not c["burst"]),
+                 out_of_order))
         print("held events: %d" % len(held))
         print("invalid requests accepted: %d; valid-looking requests refused: %d"
               % (len(invalid_accepted), len(valid_refused)))
@@ -548,8 +562,7 @@ def main():
         lim = None if args.verbose else 10  # findings listed
         causes = {}
         for r in valid_refused:
-            key = r[4].split(" by ")[0].split(":")[0:2]
-            key = ":".join(key)[:70]
+            key = re.sub(r"[-+]?[0-9][0-9.e+-]*", "N", r[4])[:90]  # the cause, not the values
             causes[key] = causes.get(key, 0) + 1
         for key, n in sorted(causes.items(), key=lambda kv: -kv[1]):
             print("  %5d refused as: %s" % (n, key))
@@ -557,7 +570,8 @@ def main():
             for r in valid_refused[:lim]:
                 print("  refused: %s %s: %s" % (r[0], r[2], r[4]))
             for c in missing[:lim]:
-                print("  no event for accepted %s (%s): %s" % (c["reason"], c["label"],
+                print("  no event for accepted %s (%s%s): %s" % (c["reason"], c["label"],
+                                                                ", burst" if c["burst"] else "",
                                                               str(c["req"]).replace("\n", " ")))
             for c in followed[:lim]:
                 print("  held after accepted %s (%s): %s" % (c["reason"], c["label"],
