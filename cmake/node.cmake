@@ -13,7 +13,8 @@ add_library(virtual_go_sim
   src/sim/mesh_file.cpp
   src/sim/clock_watch.cpp
   src/sim/update_budget.cpp
-  src/sim/board_drawing.cpp)
+  src/sim/board_drawing.cpp
+  src/sim/sim_diagnostics.cpp)
 target_link_libraries(virtual_go_sim PUBLIC virtual_go_core)
 
 add_executable(stone_node

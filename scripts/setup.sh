@@ -13,7 +13,8 @@ VG_PACKAGES=(
   build-essential cmake python3 python3-catkin-pkg catkin
   ros-core-dev libroscpp-dev libtf2-ros-dev libtf2-eigen-dev librosbag-dev librostest-dev
   python3-rostest python3-rosbag ros-message-generation ros-std-srvs ros-geometry-msgs
-  ros-nav-msgs ros-visualization-msgs libeigen3-dev libboost-dev libgtest-dev
+  ros-nav-msgs ros-visualization-msgs libdiagnostic-updater-dev ros-diagnostic-msgs
+  libeigen3-dev libboost-dev libgtest-dev
   rviz tf2-tools tf-tools xvfb xauth imagemagick gnuplot-nox procps catkin-lint
   gnugo
 )
@@ -24,6 +25,7 @@ VG_PACKAGES=(
 VG_PACKAGES+=(
   rosbash python3-genpy python3-std-msgs python3-geometry-msgs python3-nav-msgs
   python3-visualization-msgs python3-std-srvs python3-tf2-msgs python3-rosgraph-msgs
+  python3-diagnostic-msgs
 )
 
 vg_sudo() {

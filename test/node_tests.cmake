@@ -11,7 +11,8 @@ catkin_add_gtest(node_adapter_test
   test/sim/test_stone_simulation.cpp
   test/sim/test_stone_simulation_board.cpp
   test/sim/test_mesh_file.cpp
-  test/sim/test_clock_watch.cpp)
+  test/sim/test_clock_watch.cpp
+  test/sim/test_sim_diagnostics.cpp)
 target_link_libraries(node_adapter_test virtual_go_sim GTest::gtest_main)
 # Checks README.md's parameter table against the code.
 target_compile_definitions(node_adapter_test PRIVATE VG_README="${PROJECT_SOURCE_DIR}/README.md")

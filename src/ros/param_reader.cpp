@@ -122,6 +122,7 @@ std::vector<std::string> unknown_parameters(const ros::NodeHandle& nh) {
   for (const std::string& full : all) {
     if (full.compare(0, prefix.size(), prefix) != 0) continue;
     const std::string name = full.substr(prefix.size());
+    if (name == "diagnostic_period") continue;  // diagnostic_updater reads it (/diagnostics)
     if (find_parameter(name) == nullptr) unknown.push_back(name);
   }
   return unknown;

@@ -22,6 +22,12 @@ constexpr std::int64_t kClockPatienceNs = 3000000000;  // ROS time still this lo
 constexpr double kClockWatchPeriodS = 0.5;             // wall time between looks at the clock
 constexpr double kBehindWarningPeriodS = 5.0;          // at most one "falls behind" warning
 
+std::int64_t steady_ns() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(
+             std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+
 Eigen::Vector3d to_eigen(const geometry_msgs::Vector3& v) {
   Eigen::Vector3d out;
   tf2::fromMsg(v, out);
@@ -94,7 +100,9 @@ StoneNode::StoneNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_n
     : nh_(nh),
       private_nh_(private_nh),
       sim_(read_config(private_nh)),
-      clock_watch_(kClockPatienceNs) {
+      clock_watch_(kClockPatienceNs),
+      update_stats_(steady_ns()),
+      diagnostics_(nh, private_nh) {
   const StoneConfig& c = sim_.config();
   if (c.rate_hz * c.dt_s > 1.0) {
     ROS_WARN(
@@ -142,6 +150,9 @@ StoneNode::StoneNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_n
   reset_srv_ = private_nh_.advertiseService("reset", &StoneNode::on_reset, this);
   set_state_srv_ = private_nh_.advertiseService("set_state", &StoneNode::on_set_state, this);
 
+  diagnostics_.setHardwareID(ros::this_node::getName());
+  diagnostics_.add("simulation", this, &StoneNode::fill_diagnostics);
+
   // On ROS time, so use_sim_time and /clock drive it too.
   timer_ = nh_.createTimer(ros::Duration(1.0 / c.rate_hz), &StoneNode::on_timer, this);
   ROS_INFO("stone_node: %s model, %s integrator, dt %lld ns, %g Hz, frames %s -> %s",
@@ -155,7 +166,9 @@ void StoneNode::on_timer(const ros::TimerEvent&) {
   // served however slow the physics is.
   const std::int64_t now_ns = static_cast<std::int64_t>(ros::Time::now().toNSec());
   DeadlineBudget budget(update_allowance(sim_.config().rate_hz));
+  const std::int64_t update_start_ns = steady_ns();
   const UpdateResult result = sim_.update(now_ns, budget);
+  update_stats_.record(steady_ns() - update_start_ns, result, sim_.time_ns());
   if (result.steps_deferred > 0) {
     ROS_WARN_THROTTLE(kBehindWarningPeriodS,
                       "stone_node: the physics falls behind ROS time: %.3f s behind after a tick's "
@@ -197,6 +210,13 @@ void StoneNode::on_timer(const ros::TimerEvent&) {
     // Publishing (ROS serialisation, a broken connection) must not end the node either.
     ROS_ERROR_THROTTLE(10.0, "stone_node: publishing failed: %s", e.what());
   }
+  diagnostics_.update();  // publishes once per ~diagnostic_period (1 s) of ROS time
+}
+
+void StoneNode::fill_diagnostics(diagnostic_updater::DiagnosticStatusWrapper& status) {
+  const DiagnosticReport report = diagnostic_report(sim_, update_stats_.take(steady_ns()));
+  status.summary(static_cast<unsigned char>(report.level), report.message);
+  for (const auto& [key, value] : report.values) status.add(key, value);
 }
 
 void StoneNode::on_marker_timer(const ros::WallTimerEvent&) {
@@ -205,9 +225,7 @@ void StoneNode::on_marker_timer(const ros::WallTimerEvent&) {
 }
 
 void StoneNode::on_clock_watch(const ros::WallTimerEvent&) {
-  const std::int64_t wall_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(
-                                   std::chrono::steady_clock::now().time_since_epoch())
-                                   .count();
+  const std::int64_t wall_ns = steady_ns();
   const std::int64_t ros_ns = static_cast<std::int64_t>(ros::Time::now().toNSec());
   const double patience_s = to_seconds(clock_watch_.patience_ns());
   switch (clock_watch_.observe(wall_ns, ros_ns)) {

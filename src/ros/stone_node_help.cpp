@@ -93,6 +93,10 @@ Published (private names, ~ = the node's name, e.g. /stone):
       << reason_lines() << R"(
                        (with ~board/enabled every change of contact regime); its exact
                        instant = header.stamp (rounded down to a ns) + time_offset
+  /diagnostics         diagnostic_msgs/DiagnosticArray (every ~diagnostic_period, 1 s):
+                       stones awake/resting, events per s, step cost, real-time factor,
+                       pending requests, steps deferred, behind; WARN while behind, ERROR
+                       while a failed step holds the state
 
 Services (changes take effect at the next physics step, which starts a new segment):
   ~set_angular_velocity  virtual_go/SetAngularVelocity: angular_velocity rad/s, frame

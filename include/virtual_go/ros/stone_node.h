@@ -2,6 +2,7 @@
 // out, services in. Single-threaded: construct, then ros::spin().
 #pragma once
 
+#include <diagnostic_updater/diagnostic_updater.h>
 #include <ros/ros.h>
 #include <std_srvs/Trigger.h>
 #include <tf2_ros/transform_broadcaster.h>
@@ -14,6 +15,7 @@
 #include "virtual_go/SetAngularVelocity.h"
 #include "virtual_go/SetState.h"
 #include "virtual_go/sim/clock_watch.h"
+#include "virtual_go/sim/sim_diagnostics.h"
 #include "virtual_go/sim/stone_simulation.h"
 
 namespace virtual_go {
@@ -29,6 +31,7 @@ class StoneNode {
   void publish_events(const UpdateResult& result);
   void on_marker_timer(const ros::WallTimerEvent& event);
   void on_clock_watch(const ros::WallTimerEvent& event);
+  void fill_diagnostics(diagnostic_updater::DiagnosticStatusWrapper& status);
 
   bool on_set_angular_velocity(SetAngularVelocity::Request& request,
                                SetAngularVelocity::Response& response);
@@ -60,6 +63,9 @@ class StoneNode {
   // Under use_sim_time: says so when ROS time stands still (no /clock).
   ClockWatch clock_watch_;
   ros::WallTimer clock_watch_timer_;
+  // /diagnostics: one status, from the updates' costs (UpdateStats) and the simulation.
+  UpdateStats update_stats_;
+  diagnostic_updater::Updater diagnostics_;
 };
 
 }  // namespace virtual_go

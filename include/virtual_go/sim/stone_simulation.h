@@ -110,6 +110,10 @@ class StoneSimulation {
   std::int64_t max_lag_ns() const { return clock_.max_lag_ns(); }
   // True after a failed step until a change replaces the state.
   bool held() const { return held_; }
+  // While held(): the cause of the failed step.
+  const std::string& failure() const { return failure_; }
+  // With the board: the World holds the stone at rest (without the board it never rests).
+  bool resting() const { return world_ && world_->is_resting(0); }
   // With the board: the World (its counters show the work done), else nullptr.
   const World* world() const { return world_ ? &*world_ : nullptr; }
   // Simulated time (ns) of the World's time 0.
