@@ -14,7 +14,8 @@ add_library(virtual_go_sim
   src/sim/clock_watch.cpp
   src/sim/update_budget.cpp
   src/sim/board_drawing.cpp
-  src/sim/sim_diagnostics.cpp)
+  src/sim/sim_diagnostics.cpp
+  src/sim/sim_pacer.cpp)
 target_link_libraries(virtual_go_sim PUBLIC virtual_go_core)
 
 add_executable(stone_node

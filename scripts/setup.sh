@@ -14,6 +14,7 @@ VG_PACKAGES=(
   ros-core-dev libroscpp-dev libtf2-ros-dev libtf2-eigen-dev librosbag-dev librostest-dev
   python3-rostest python3-rosbag ros-message-generation ros-std-srvs ros-geometry-msgs
   ros-nav-msgs ros-visualization-msgs libdiagnostic-updater-dev ros-diagnostic-msgs
+  libros-rosgraph-msgs-dev
   libeigen3-dev libboost-dev libgtest-dev
   rviz tf2-tools tf-tools xvfb xauth imagemagick gnuplot-nox procps catkin-lint
   gnugo

@@ -1,7 +1,7 @@
 # Tests of the stone node. Included by CMakeLists.txt inside if(CATKIN_ENABLE_TESTING).
 
-# The ROS-free adapter (clock, parameters, requests, outputs, simulation, mesh file, clock
-# watch): gtest, no master.
+# The ROS-free adapter (clock, parameters, requests, outputs, simulation and its controls,
+# pacer, mesh file, clock watch): gtest, no master.
 catkin_add_gtest(node_adapter_test
   test/sim/test_sim_clock.cpp
   test/sim/test_stone_config.cpp
@@ -10,6 +10,8 @@ catkin_add_gtest(node_adapter_test
   test/sim/test_state_output.cpp
   test/sim/test_stone_simulation.cpp
   test/sim/test_stone_simulation_board.cpp
+  test/sim/test_stone_simulation_controls.cpp
+  test/sim/test_sim_pacer.cpp
   test/sim/test_mesh_file.cpp
   test/sim/test_clock_watch.cpp
   test/sim/test_sim_diagnostics.cpp)
@@ -25,7 +27,8 @@ add_rostest_gtest(stone_node_rostest test/ros/stone_node_tf.test
   test/ros/test_stone_node_services.cpp
   test/ros/test_stone_node_sim_time.cpp
   test/ros/test_stone_node_params.cpp
-  test/ros/test_stone_node_board.cpp)
+  test/ros/test_stone_node_board.cpp
+  test/ros/test_stone_node_controls.cpp)
 target_link_libraries(stone_node_rostest ${catkin_LIBRARIES} GTest::gtest)
 target_compile_definitions(stone_node_rostest PRIVATE STONE_NODE_PATH="$<TARGET_FILE:stone_node>")
 add_dependencies(stone_node_rostest stone_node ${${PROJECT_NAME}_EXPORTED_TARGETS}
@@ -36,7 +39,9 @@ foreach(node_test
     stone_node_sim_time
     stone_node_params
     stone_node_hz
-    stone_node_board)
+    stone_node_board
+    stone_node_controls
+    stone_node_own_clock)
   add_rostest(test/ros/${node_test}.test DEPENDENCIES stone_node_rostest stone_node)
 endforeach()
 

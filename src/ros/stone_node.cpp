@@ -1,5 +1,6 @@
 #include "virtual_go/ros/stone_node.h"
 
+#include <rosgraph_msgs/Clock.h>
 #include <tf2_eigen/tf2_eigen.h>
 
 #include <chrono>
@@ -140,7 +141,7 @@ StoneNode::StoneNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_n
   }
   marker_timer_ =
       nh_.createWallTimer(ros::WallDuration(kMarkerPeriodS), &StoneNode::on_marker_timer, this);
-  if (ros::Time::isSimTime()) {
+  if (ros::Time::isSimTime() && !c.publish_clock) {  // with it, its own /clock: no waiting
     clock_watch_timer_ = nh_.createWallTimer(ros::WallDuration(kClockWatchPeriodS),
                                              &StoneNode::on_clock_watch, this);
   }
@@ -153,8 +154,29 @@ StoneNode::StoneNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_n
   diagnostics_.setHardwareID(ros::this_node::getName());
   diagnostics_.add("simulation", this, &StoneNode::fill_diagnostics);
 
-  // On ROS time, so use_sim_time and /clock drive it too.
-  timer_ = nh_.createTimer(ros::Duration(1.0 / c.rate_hz), &StoneNode::on_timer, this);
+  // The simulation controls take std_srvs/Empty as gazebo's /gazebo/pause_physics and
+  // /gazebo/unpause_physics do, so a gazebo user's habits and scripts carry over; the answer
+  // goes to the log. ~step has no gazebo service to follow: it says how many ticks it queued.
+  pause_srv_ = private_nh_.advertiseService("pause", &StoneNode::on_pause, this);
+  unpause_srv_ = private_nh_.advertiseService("unpause", &StoneNode::on_unpause, this);
+  step_srv_ = private_nh_.advertiseService("step", &StoneNode::on_step, this);
+
+  if (c.publish_clock) {
+    // The node owns the time: a timer on ROS time would wait for the /clock it publishes
+    // itself (under use_sim_time), so it runs on wall time. At factor 0 the ticks follow each
+    // other (period = one update's allowance): as fast as possible, and services and SIGINT are
+    // served between ticks.
+    pacer_.emplace(c.rate_hz, c.real_time_factor);
+    clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 10);
+    const double period_s = c.real_time_factor > 0.0
+                                ? 1.0 / c.rate_hz
+                                : 1e-9 * static_cast<double>(update_allowance(c.rate_hz).count());
+    own_clock_timer_ =
+        nh_.createWallTimer(ros::WallDuration(period_s), &StoneNode::on_own_clock_timer, this);
+  } else {
+    // On ROS time, so use_sim_time and /clock drive it too.
+    timer_ = nh_.createTimer(ros::Duration(1.0 / c.rate_hz), &StoneNode::on_timer, this);
+  }
   ROS_INFO("stone_node: %s model, %s integrator, dt %lld ns, %g Hz, frames %s -> %s",
            c.model.c_str(), c.integrator.c_str(), static_cast<long long>(sim_.dt_ns()), c.rate_hz,
            c.world_frame.c_str(), c.stone_frame.c_str());
@@ -178,6 +200,41 @@ void StoneNode::on_timer(const ros::TimerEvent&) {
                       1e-6 * static_cast<double>(update_allowance(sim_.config().rate_hz).count()),
                       static_cast<long long>(result.steps_deferred), to_seconds(sim_.max_lag_ns()));
   }
+  publish_result(result);
+  diagnostics_.update();  // publishes once per ~diagnostic_period (1 s) of ROS time
+}
+
+void StoneNode::on_own_clock_timer(const ros::WallTimerEvent&) {
+  DeadlineBudget budget(update_allowance(sim_.config().rate_hz));
+  std::int64_t mark_ns = steady_ns();
+  bool clock_sent = false;
+  pacer_->tick(sim_, mark_ns, budget, [&](const UpdateResult& result) {
+    // Owning the clock, nothing can fall behind: steps a budget left are the pace slowing down,
+    // not a lag to warn about (diagnostics show the real-time factor reached).
+    UpdateResult own = result;
+    own.steps_deferred = 0;
+    own.behind_ns = 0;
+    update_stats_.record(steady_ns() - mark_ns, own, sim_.time_ns());
+    publish_result(own);
+    if (result.advanced) {
+      // /clock at the state just published: tf lookups at "now" find it exactly.
+      rosgraph_msgs::Clock clock;
+      clock.clock = to_ros_time(result.stamp_ns);
+      clock_pub_.publish(clock);
+      clock_sent = true;
+    }
+    mark_ns = steady_ns();
+  });
+  if (!clock_sent && sim_.started()) {
+    // Paused (or held): the time stands, and a late subscriber still learns it.
+    rosgraph_msgs::Clock clock;
+    clock.clock = to_ros_time(sim_.time_ns());
+    clock_pub_.publish(clock);
+  }
+  diagnostics_.update();
+}
+
+void StoneNode::publish_result(const UpdateResult& result) {
   if (!result.error.empty()) {
     ROS_ERROR(
         "stone_node: %s; the state is held and nothing is published until ~reset or "
@@ -192,6 +249,11 @@ void StoneNode::on_timer(const ros::TimerEvent&) {
             "stone_node: the physics fell more than %.1f s behind ROS time; the stone "
             "skips ahead to %.9f s and continues from its state",
             to_seconds(sim_.max_lag_ns()), to_seconds(event.stamp_ns));
+      } else if (event.reason == EventReason::time_jump && event.detail == "unpaused") {
+        ROS_INFO(
+            "stone_node: unpaused; the stone continues from its paused state at ROS time "
+            "%.9f s (a time_jump event: the paused interval is not simulated)",
+            to_seconds(event.stamp_ns));
       } else if (event.reason == EventReason::time_jump) {
         ROS_WARN("stone_node: ROS time jumped to %.9f s; the stone continues from there",
                  to_seconds(event.stamp_ns));
@@ -210,7 +272,6 @@ void StoneNode::on_timer(const ros::TimerEvent&) {
     // Publishing (ROS serialisation, a broken connection) must not end the node either.
     ROS_ERROR_THROTTLE(10.0, "stone_node: publishing failed: %s", e.what());
   }
-  diagnostics_.update();  // publishes once per ~diagnostic_period (1 s) of ROS time
 }
 
 void StoneNode::fill_diagnostics(diagnostic_updater::DiagnosticStatusWrapper& status) {
@@ -283,6 +344,22 @@ bool StoneNode::on_set_angular_velocity(SetAngularVelocity::Request& request,
 bool StoneNode::on_reset(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response) {
   answer(
       "reset", [&] { return sim_.reset(); }, response);
+  return true;
+}
+
+bool StoneNode::on_pause(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
+  ROS_INFO("stone_node: ~pause: %s", sim_.pause().c_str());
+  return true;
+}
+
+bool StoneNode::on_unpause(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
+  ROS_INFO("stone_node: ~unpause: %s", sim_.unpause().c_str());
+  return true;
+}
+
+bool StoneNode::on_step(StepSimulation::Request& request, StepSimulation::Response& response) {
+  answer(
+      "step", [&] { return sim_.step(request.ticks); }, response);
   return true;
 }
 

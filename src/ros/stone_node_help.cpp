@@ -8,6 +8,7 @@
 #include "virtual_go/common/formatting.h"
 #include "virtual_go/sim/segment_event.h"
 #include "virtual_go/sim/stone_parameters.h"
+#include "virtual_go/sim/stone_simulation.h"
 
 namespace virtual_go {
 namespace {
@@ -76,7 +77,9 @@ std::string stone_node_help() {
 
 Simulates a Go stone (a biconvex lens) as a rigid body on a timer on ROS time (use_sim_time
 and /clock work; it warns when ROS time stands still for 3 s) with a fixed physics step, and
-publishes its pose. SI units (REP 103). Needs a ROS master; --help does not.
+publishes its pose. With ~publish_clock it owns the time instead: it publishes /clock and runs
+at ~real_time_factor times wall time (0: as fast as possible). SI units (REP 103). Needs a ROS
+master; --help does not.
 
 Published (private names, ~ = the node's name, e.g. /stone):
   /tf                  world_frame -> stone_frame, stamped with the simulated time of the state
@@ -95,14 +98,23 @@ Published (private names, ~ = the node's name, e.g. /stone):
                        instant = header.stamp (rounded down to a ns) + time_offset
   /diagnostics         diagnostic_msgs/DiagnosticArray (every ~diagnostic_period, 1 s):
                        stones awake/resting, events per s, step cost, real-time factor,
-                       pending requests, steps deferred, behind; WARN while behind, ERROR
-                       while a failed step holds the state
+                       pending requests, steps deferred, behind, paused, steps queued; WARN
+                       while behind, ERROR while a failed step holds the state
+  /clock               rosgraph_msgs/Clock (only with ~publish_clock): the simulated time of
+                       each state published; starts at 1 s, stands while paused
 
 Services (changes take effect at the next physics step, which starts a new segment):
   ~set_angular_velocity  virtual_go/SetAngularVelocity: angular_velocity rad/s, frame
                          "world" (default) or "stone"; rigid_body sets L = I w
   ~reset                 std_srvs/Trigger: back to the initial state (ROS time keeps running)
   ~set_state             virtual_go/SetState: pose and twist in the world frame
+  ~pause                 std_srvs/Empty (as gazebo's pause_physics): no step is taken until
+                         ~step or ~unpause; requests wait for the next step
+  ~unpause               std_srvs/Empty: run again; following ROS time, the paused interval
+                         is skipped (a time_jump event, detail "unpaused")
+  ~step                  virtual_go/StepSimulation: while paused, take `ticks` steps of ~dt
+                         (1 to )"
+      << kMaxStepTicks << R"( queued)
   A request beyond the bounds below (~max_distance, ~max_speed, ~max_angular_velocity) is
   refused with the field, the value and the limit. So are requests beyond the )"
       << kMaxPendingRequests << R"( that

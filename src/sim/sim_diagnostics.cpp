@@ -56,6 +56,8 @@ DiagnosticReport diagnostic_report(const StoneSimulation& sim, const UpdateSumma
       {"steps deferred", std::to_string(summary.steps_deferred)},
       {"behind (s)", format_value(summary.behind_s)},
       {"held", sim.held() ? "true" : "false"},
+      {"paused", sim.paused() ? "true" : "false"},
+      {"steps queued", std::to_string(sim.steps_queued())},
       {"period (s)", format_value(summary.period_s)},
   };
   if (sim.held()) {
@@ -64,6 +66,9 @@ DiagnosticReport diagnostic_report(const StoneSimulation& sim, const UpdateSumma
   } else if (summary.steps_deferred > 0) {
     r.level = DiagnosticLevel::warn;
     r.message = "the physics falls behind ROS time by " + format_value(summary.behind_s) + " s";
+  } else if (sim.paused()) {
+    r.message = "paused at " + stamp_text(sim.time_ns()) + " s (" +
+                std::to_string(sim.steps_queued()) + " ~step tick(s) queued)";
   } else if (!sim.started()) {
     r.message = "waiting for a valid ROS time";
   } else {

@@ -109,6 +109,22 @@ std::int64_t check_period(const std::string& param, double value_s, double dt_s,
   return ns;
 }
 
+// ~real_time_factor: 0 (as fast as possible) or within its bounds, and only with ~publish_clock
+// (without it ROS time sets the pace).
+void check_real_time_factor(const StoneConfig& c) {
+  const double f = c.real_time_factor;
+  if (!(f == 0.0 || (f >= kMinRealTimeFactor && f <= kMaxRealTimeFactor))) {  // also NaN
+    fail("real_time_factor", "must be 0 (as fast as possible) or between " +
+                                 format_value(kMinRealTimeFactor) + " and " +
+                                 format_value(kMaxRealTimeFactor) + ", got " + format_value(f));
+  }
+  if (!c.publish_clock && f != 1.0) {
+    fail("real_time_factor",
+         "needs ~publish_clock true (without it the simulation follows ROS time), got " +
+             format_value(f));
+  }
+}
+
 // The parameter behind a WorldConfig field the core names (validate_world_config, World).
 std::string world_parameter(const std::string& field) {
   if (field == "state") return "initial/position";
@@ -249,6 +265,7 @@ CheckedConfig check_config(const StoneConfig& c) {
       check_period("auto_reset_period", c.auto_reset_period_s, c.dt_s, dt_ns);
   const std::int64_t auto_reset_after_rest_ns =
       check_period("auto_reset_after_rest", c.auto_reset_after_rest_s, c.dt_s, dt_ns);
+  check_real_time_factor(c);
   check_frame("world_frame", c.world_frame);
   check_frame("stone_frame", c.stone_frame);
   if (c.world_frame == c.stone_frame) {

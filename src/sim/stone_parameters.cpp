@@ -169,6 +169,14 @@ std::vector<BoundParameter> bind_parameters(StoneConfig& c) {
         "rebound height below which bouncing ends in sustained contact; positive and at most " +
             format_value(kMaxNodeZenoHeightM)},
        &c.zeno_height_m},
+      {{"publish_clock", "", "",
+        "true: the node owns the time: it publishes /clock (run other nodes with use_sim_time) "
+        "and runs at ~real_time_factor times wall time"},
+       &c.publish_clock},
+      {{"real_time_factor", "", "",
+        "with ~publish_clock: simulated s per wall s; 0 = as fast as possible, else " +
+            format_value(kMinRealTimeFactor) + " to " + format_value(kMaxRealTimeFactor)},
+       &c.real_time_factor},
       {{"world_frame", "", "", "tf frame of the world"}, &c.world_frame},
       {{"stone_frame", "", "", "tf frame of the stone (its body frame)"}, &c.stone_frame},
   };

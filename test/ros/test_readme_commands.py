@@ -14,6 +14,11 @@ long as the following lines need it, until the next `roslaunch` line stops it wi
   messages; tf_echo's poses differ from line to line (the motion shows);
 - `rosservice call /stone/...`: exit 0, `success: True`, and one second later the latest
   segment on /stone/events is still the one this call started (the scene does not undo it);
+  the simulation controls instead by what they do to the stone's /tf stamps: after `pause` none
+  comes, after `step "ticks: N"` (`success: True`) exactly one more, N * dt later, and after
+  `unpause` they go on, from a `time_jump` event with detail `unpaused`;
+- `rosrun virtual_go stone_node ...` (not --help) stands for the first terminal as a
+  `roslaunch` line does (the one before is stopped), until it publishes its start event;
 - `rosrun virtual_go bag_report ...`: exit 0 (with --strict 0 or 1, as the README says); its
   --csv and --plot files exist;
 - `rosbag info BAG`, `rosbag check BAG`: exit 0; check finds no type that needs a migration;
@@ -42,7 +47,9 @@ import rosgraph
 import rospkg
 import rospy
 import rostest
-from virtual_go.msg import StoneEvent
+import yaml
+from tf2_msgs.msg import TFMessage
+from virtual_go.msg import StoneEvent, StoneInfo
 
 PKG = "virtual_go"
 NODE = "/stone"
@@ -51,6 +58,9 @@ STREAM_S = 4.0  # how long a streaming command runs before Ctrl-C
 LAUNCH_MIN_S = 8.0  # a launch runs at least this long (a recording then holds several seconds)
 # Services every node has; not the README's business.
 ROS_SERVICES = ("get_loggers", "set_logger_level")
+# The simulation controls: checked by their effect on /tf, not by an event of their name.
+CONTROLS = ("pause", "unpause", "step")
+SETTLE_S = 0.5  # a timer tick under way when a control lands, and the ticks a step takes
 
 
 def readme_blocks(path):
@@ -126,6 +136,14 @@ class ReadmeCommandsTest(unittest.TestCase):
         self.node_topics, self.node_services = set(), set()
         self.events = []
         rospy.Subscriber(NODE + "/events", StoneEvent, self.events.append, queue_size=100)
+        self.tf_stamp = 0  # ns, of the latest /tf of the stone
+        self.paused_stamp = None
+        rospy.Subscriber("/tf", TFMessage, self.on_tf, queue_size=100)
+
+    def on_tf(self, message):
+        for t in message.transforms:
+            if t.child_frame_id == "stone":
+                self.tf_stamp = t.header.stamp.to_nsec()
 
     def tearDown(self):
         if self.terminal:
@@ -204,6 +222,52 @@ class ReadmeCommandsTest(unittest.TestCase):
         latest = self.events[-1].reason
         self.assertEqual(latest, reason, "%s: one second later the current segment is `%s`, "
                          "not `%s`: the scene undid the call" % (self.where(line), latest, reason))
+
+    def check_control(self, argv, line):
+        name = argv[2].rsplit("/", 1)[1]
+        output = self.finish(line)
+        where = "%s:\n%s" % (self.where(line), output)
+        time.sleep(SETTLE_S)
+        if name == "pause":
+            self.paused_stamp = self.tf_stamp
+            time.sleep(1.0)
+            self.assertEqual(self.tf_stamp, self.paused_stamp, "%s: /tf goes on" % where)
+        elif name == "step":
+            self.assertIn("success: True", output, where)
+            self.assertIsNotNone(self.paused_stamp, "%s: step before pause" % where)
+            ticks = yaml.safe_load(argv[3])["ticks"]
+            dt_ns = rospy.wait_for_message(NODE + "/info", StoneInfo, timeout=5.0).dt_ns
+            self.assertEqual(self.tf_stamp - self.paused_stamp, ticks * dt_ns,
+                             "%s: /tf is not %d ticks after the pause" % (where, ticks))
+            self.paused_stamp = self.tf_stamp
+            time.sleep(1.0)
+            self.assertEqual(self.tf_stamp, self.paused_stamp, "%s: /tf goes on" % where)
+        else:
+            before = self.tf_stamp
+            time.sleep(1.0)
+            self.assertGreater(self.tf_stamp, before, "%s: /tf does not go on" % where)
+            latest = self.events[-1] if self.events else None
+            self.assertTrue(latest and latest.reason == "time_jump" and
+                            latest.detail == "unpaused", "%s: no time_jump unpaused" % where)
+
+    def run_node(self, argv, line):
+        self.stop_terminal()
+        seen = len(self.events)
+        self.terminal = self.run_line(line)
+        self.terminal_started = time.time()
+        deadline = time.time() + TIMEOUT_S
+        while time.time() < deadline and not any(e.reason == "start"
+                                                 for e in self.events[seen:]):
+            self.assertIsNone(self.terminal.process.poll(), "%s: ended:\n%s" %
+                              (self.where(line), self.terminal.output()))
+            time.sleep(0.1)
+        self.assertTrue(any(e.reason == "start" for e in self.events[seen:]),
+                        "%s: the node published no start event in %.0f s" %
+                        (self.where(line), TIMEOUT_S))
+        publishers, _, services = self.master.getSystemState()
+        self.node_topics |= set(t for t, n in publishers if NODE in n and t != "/rosout")
+        self.node_services |= set(s for s, n in services if NODE in n and
+                                  s.rsplit("/", 1)[1] not in ROS_SERVICES)
 
     def check_bag_report(self, argv, line):
         output = self.finish(line, (0, 1) if "--strict" in argv else (0,))
@@ -284,7 +348,9 @@ class ReadmeCommandsTest(unittest.TestCase):
         if argv[:2] == ["rostopic", "echo"]:
             return "echo_once" if "-n" in argv else "echo_stream"
         if argv[:2] == ["rosservice", "call"]:
-            return "service"
+            return "control" if argv[2].rsplit("/", 1)[-1] in CONTROLS else "service"
+        if argv[:3] == ["rosrun", PKG, "stone_node"]:
+            return "node"
         if argv[0].endswith("tf_echo") or argv[:3] == ["rosrun", "tf", "tf_echo"]:
             return "tf_echo"
         if argv[:3] == ["rosrun", PKG, "bag_report"]:
@@ -316,6 +382,9 @@ class ReadmeCommandsTest(unittest.TestCase):
                     self.launch(argv, line)
                     replaying = "replay.launch" in line
                     kind = "replay" if replaying else "launch"
+                elif kind == "node":
+                    self.run_node(argv, line)
+                    replaying = False
                 else:
                     getattr(self, "check_" + kind)(argv, line)
                     if kind == "tf_echo" and replaying:
@@ -324,8 +393,8 @@ class ReadmeCommandsTest(unittest.TestCase):
         self.stop_terminal()
 
         kinds = [k for k, _ in self.ran]
-        for kind in ("help", "service", "echo_once", "tf_echo", "tf_echo_replay", "replay",
-                     "bag_report", "rosbag"):
+        for kind in ("help", "service", "control", "node", "echo_once", "tf_echo",
+                     "tf_echo_replay", "replay", "bag_report", "rosbag"):
             self.assertIn(kind, kinds, "README.md has no runnable %s line" % kind)
         helped = " ".join(line for k, line in self.ran if k == "help")
         for exe in ("stone_node", "bag_report"):
@@ -335,7 +404,7 @@ class ReadmeCommandsTest(unittest.TestCase):
         self.assertTrue(self.node_topics, "no live node seen")
         self.assertEqual(sorted(self.node_topics - echoed), [],
                          "topics of the node without a `rostopic echo -n 1` line in README.md")
-        called = set(words(line)[2] for k, line in self.ran if k == "service")
+        called = set(words(line)[2] for k, line in self.ran if k in ("service", "control"))
         self.assertEqual(sorted(self.node_services - called), [],
                          "services of the node without a `rosservice call` line in README.md")
 

@@ -159,3 +159,21 @@ TEST(DiagnosticReport, ErrorWithTheCauseWhileHeld) {
   sim.update(kStart + 200 * kMs);
   EXPECT_EQ(vg::diagnostic_report(sim, stats.take(2 * kS)).level, vg::DiagnosticLevel::ok);
 }
+
+// ~pause shows on /diagnostics: "paused" with the queued ~step ticks, at the level of the state
+// otherwise (paused is no fault).
+TEST(DiagnosticReport, PausedSaysSoWithTheQueuedTicks) {
+  vg::StoneSimulation sim{vg::StoneConfig()};
+  vg::UpdateStats stats(0);
+  stats.record(kMs, sim.update(kStart), sim.time_ns());
+  sim.pause();
+  sim.step(25);
+  const vg::DiagnosticReport r = vg::diagnostic_report(sim, stats.take(kS));
+  EXPECT_EQ(r.level, vg::DiagnosticLevel::ok);
+  EXPECT_EQ(r.message.rfind("paused at ", 0), 0u) << r.message;
+  EXPECT_NE(r.message.find("(25 ~step tick(s) queued)"), std::string::npos) << r.message;
+  EXPECT_EQ(values(r).at("paused"), "true");
+  EXPECT_EQ(values(r).at("steps queued"), "25");
+  sim.unpause();
+  EXPECT_EQ(values(vg::diagnostic_report(sim, stats.take(2 * kS))).at("paused"), "false");
+}

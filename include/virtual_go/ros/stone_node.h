@@ -1,21 +1,26 @@
-// The ROS adapter around StoneSimulation: parameters in, a timer on ROS time, tf2 and topics
-// out, services in. Single-threaded: construct, then ros::spin().
+// The ROS adapter around StoneSimulation: parameters in, a timer on ROS time (or, with
+// ~publish_clock, a wall timer and /clock out), tf2 and topics out, services in.
+// Single-threaded: construct, then ros::spin().
 #pragma once
 
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <ros/ros.h>
+#include <std_srvs/Empty.h>
 #include <std_srvs/Trigger.h>
 #include <tf2_ros/transform_broadcaster.h>
 #include <visualization_msgs/Marker.h>
 #include <visualization_msgs/MarkerArray.h>
 
 #include <cstdint>
+#include <optional>
 #include <string>
 
 #include "virtual_go/SetAngularVelocity.h"
 #include "virtual_go/SetState.h"
+#include "virtual_go/StepSimulation.h"
 #include "virtual_go/sim/clock_watch.h"
 #include "virtual_go/sim/sim_diagnostics.h"
+#include "virtual_go/sim/sim_pacer.h"
 #include "virtual_go/sim/stone_simulation.h"
 
 namespace virtual_go {
@@ -27,6 +32,10 @@ class StoneNode {
 
  private:
   void on_timer(const ros::TimerEvent& event);
+  // With ~publish_clock: the simulation's own pace, on wall time.
+  void on_own_clock_timer(const ros::WallTimerEvent& event);
+  // Logs and publishes what an update returned (events, the state, the marker once).
+  void publish_result(const UpdateResult& result);
   void publish_state(std::int64_t stamp_ns);
   void publish_events(const UpdateResult& result);
   void on_marker_timer(const ros::WallTimerEvent& event);
@@ -37,6 +46,9 @@ class StoneNode {
                                SetAngularVelocity::Response& response);
   bool on_reset(std_srvs::Trigger::Request& request, std_srvs::Trigger::Response& response);
   bool on_set_state(SetState::Request& request, SetState::Response& response);
+  bool on_pause(std_srvs::Empty::Request& request, std_srvs::Empty::Response& response);
+  bool on_unpause(std_srvs::Empty::Request& request, std_srvs::Empty::Response& response);
+  bool on_step(StepSimulation::Request& request, StepSimulation::Response& response);
 
   ros::NodeHandle nh_;
   ros::NodeHandle private_nh_;
@@ -50,7 +62,14 @@ class StoneNode {
   ros::ServiceServer set_angular_velocity_srv_;
   ros::ServiceServer reset_srv_;
   ros::ServiceServer set_state_srv_;
+  ros::ServiceServer pause_srv_;
+  ros::ServiceServer unpause_srv_;
+  ros::ServiceServer step_srv_;
   ros::Timer timer_;
+  // With ~publish_clock: the pace of the simulation, its wall timer and /clock.
+  std::optional<SimPacer> pacer_;
+  ros::WallTimer own_clock_timer_;
+  ros::Publisher clock_pub_;
   // The marker, built once; republished every second once tf of the stone flows (see
   // stone_node.cpp, StoneNode::StoneNode, for why).
   visualization_msgs::Marker marker_;

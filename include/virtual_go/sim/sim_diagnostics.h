@@ -60,7 +60,8 @@ struct DiagnosticReport {
 };
 
 // ERROR while the state is held (the message: the failure), else WARN while the last update
-// left steps for the next (the physics falls behind ROS time), else OK.
+// left steps for the next (the physics falls behind ROS time), else OK (the message says
+// "paused" while paused).
 DiagnosticReport diagnostic_report(const StoneSimulation& sim, const UpdateSummary& summary);
 
 }  // namespace virtual_go

@@ -77,6 +77,10 @@ constexpr double kMinWidthCap = 1e-9;           // m
 constexpr double kMaxWidthCap = 1e3;            // m
 // Requests waiting for the next physics step (none comes while ROS time stands still).
 constexpr std::size_t kMaxPendingRequests = 1000;
+// ~real_time_factor bounds (0 = as fast as possible). Beyond 1000 a 60 Hz timer would ask for
+// 17 s of simulation per tick; below 0.001 a second of simulation takes over 16 minutes.
+constexpr double kMinRealTimeFactor = 0.001;
+constexpr double kMaxRealTimeFactor = 1000.0;
 
 // ~stone/color: the marker's colour.
 const std::vector<std::string>& stone_colors();
@@ -112,6 +116,10 @@ struct StoneConfig {
   double auto_reset_after_rest_s = 0.0;  // reset once resting this long; 0 = never
   std::string world_frame = "world";
   std::string stone_frame = "stone";
+  // The simulation owns the time (publishes /clock) instead of following ROS time, and runs at
+  // real_time_factor times wall time; 0 = as fast as possible.
+  bool publish_clock = false;
+  double real_time_factor = 1.0;
 };
 
 // A configuration that passed every check, with what is derived from it made here and only

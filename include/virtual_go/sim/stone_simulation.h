@@ -1,6 +1,7 @@
 // The stone node without ROS: a checked configuration -> core objects, a simulated clock on a
 // fixed grid of whole nanoseconds, and the changes requested from outside. The node calls
-// update() with ROS time on every timer tick and publishes what it returns.
+// update() with ROS time on every timer tick (with ~publish_clock, with the simulated times
+// sim/sim_pacer picks) and publishes what it returns.
 //
 // With ~board/enabled the stone lives in a World (world/world.h): every grid time is a
 // World::advance_to, each World event becomes a segment event with the exact state at its
@@ -47,6 +48,10 @@ struct UpdateResult {
   std::int64_t behind_ns = 0;
 };
 
+// Most ticks one ~step may queue (with those already queued): 1000 s of simulation at the
+// default ~dt; a larger number is a typo more likely than a wish.
+constexpr std::int64_t kMaxStepTicks = 1000000;
+
 // A request refused for a reason other than a bad field: the state is held after a failed
 // step, or too many requests wait for a step. what() says why and what to do.
 class RequestRefused : public std::runtime_error {
@@ -87,6 +92,22 @@ class StoneSimulation {
                         const Eigen::Vector4d& orientation_xyzw,
                         const Eigen::Vector3d& velocity_world,
                         const Eigen::Vector3d& angular_velocity_world);
+
+  // Simulation controls. While paused no step is taken however ROS time moves (the state, its
+  // stamp and the clock stay as last published; requests queue as ever), except the ticks
+  // step() queues. Without ~publish_clock simulated time follows ROS time, so the first update
+  // after unpause() skips the paused interval: a time_jump event (detail "unpaused") at the ROS
+  // time, the state continuing from where it stood (no jump when ROS time has not moved on by a
+  // step). With ~publish_clock the simulation owns the time and simply goes on. Each returns
+  // the answer for the caller; pause and unpause are idempotent.
+  std::string pause();
+  std::string unpause();
+  // Queues `ticks` steps of dt, taken by the next updates (as their budgets allow) whatever ROS
+  // time says. InvalidArgument ("ticks") for 0 or more than kMaxStepTicks queued; RequestRefused
+  // while not paused.
+  std::string step(std::int64_t ticks);
+  bool paused() const { return paused_; }
+  std::int64_t steps_queued() const { return steps_queued_; }
 
   const StoneConfig& config() const { return checked_.config; }
   const Stone& stone() const { return checked_.stone; }
@@ -130,6 +151,11 @@ class StoneSimulation {
   };
 
   void advance_to(std::int64_t now_ns, UpdateBudget& budget, UpdateResult& result);
+  // Takes up to `steps` steps (the first always, the others while the budget lasts); returns how
+  // many it took.
+  std::int64_t take_steps(std::int64_t steps, UpdateBudget& budget, UpdateResult& result);
+  // The time line restarts at now_ns (a time jump, or the end of a pause): a new segment.
+  void jump_to(std::int64_t now_ns, const std::string& detail, UpdateResult& result);
   // False: the step is not finished (the World is part-way to the next grid time, the budget
   // spent); the next update continues it.
   bool step(UpdateResult& result, UpdateBudget& budget);
@@ -182,6 +208,9 @@ class StoneSimulation {
   bool failure_reported_ = true;  // the next request's answer has carried failure_
   std::deque<Change> pending_;
   bool behind_ = false;  // the last update left steps for the next (its budget was spent)
+  bool paused_ = false;
+  std::int64_t steps_queued_ = 0;  // ticks ~step asked for, not yet taken
+  bool resync_ = false;            // unpaused while following ROS time: skip the paused interval
   // With the board.
   std::optional<World> world_;
   std::int64_t epoch_ns_ = 0;
