@@ -56,4 +56,5 @@ set(VG_CORE_SOURCES
   src/world/world_config.cpp
   src/world/world_body.cpp
   src/world/stone_table.cpp
+  src/world/stone_placement.cpp
   src/world/world.cpp)

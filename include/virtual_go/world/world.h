@@ -137,7 +137,7 @@ class World {
                  std::vector<WorldEvent>& events);
   // Moves a resting stone lying on the board's top face horizontally to (x, y) without waking
   // it: it stays resting, its orientation and height unchanged, its velocities zero (the
-  // placement's nudge, go/stone_placement.h). Advances to t_s first. Throws InvalidArgument
+  // placement's nudge, world/stone_placement.h). Advances to t_s first. Throws InvalidArgument
   // before anything changes: "stone" (unknown, or not resting), "position" (not finite, or its
   // lowest point would leave the top face), "time".
   void move_resting_stone(StoneId id, const Eigen::Vector2d& position_xy_world, double t_s,
