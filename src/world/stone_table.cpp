@@ -23,7 +23,8 @@ std::size_t StoneTable::add(std::size_t body) {
 }
 
 void StoneTable::erase(std::size_t i) {
-  set_mode(i, StoneMode::resting);  // out of the awake set first
+  hot_[i].mode = StoneMode::resting;  // out of the awake set first (bookkeeping, not physics)
+  sync_awake(i);
   hot_.erase(hot_.begin() + static_cast<std::ptrdiff_t>(i));
   records_.erase(records_.begin() + static_cast<std::ptrdiff_t>(i));
   ids_.erase(ids_.begin() + static_cast<std::ptrdiff_t>(i));
@@ -44,7 +45,7 @@ void StoneTable::clear() {
 }
 
 void StoneTable::set_mode(std::size_t i, StoneMode mode) {
-  hot_[i].mode = mode;
+  hot_[i].mode = transition(hot_[i].mode, mode);
   sync_awake(i);
 }
 

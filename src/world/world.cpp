@@ -256,7 +256,7 @@ StoneMode World::mode(std::size_t stone) const {
 }
 ContactPhase World::contact_phase(std::size_t stone) const {
   check_stone_index(stone);
-  return stones_.record(stone).phase;
+  return virtual_go::contact_phase(stones_.hot(stone).mode);
 }
 std::size_t World::body_of(std::size_t stone) const {
   check_stone_index(stone);
@@ -400,10 +400,11 @@ bool World::advance_stone(std::size_t i, double t_s, long work_limit) {
       case StoneMode::flight:
         went_on = advance_flight(i, t_s);
         break;
-      case StoneMode::contact:
-        went_on = stones_.record(i).phase == ContactPhase::plane
-                      ? advance_plane(i, t_s, work_limit)
-                      : advance_nonsmooth(i, t_s, work_limit);
+      case StoneMode::plane_contact:
+        went_on = advance_plane(i, t_s, work_limit);
+        break;
+      case StoneMode::nonsmooth_contact:
+        went_on = advance_nonsmooth(i, t_s, work_limit);
         break;
     }
     if (went_on)
@@ -535,7 +536,6 @@ void World::begin_flight(std::size_t i, const RigidBodyState& state, double t_s,
   stones_.set_mode(i, StoneMode::flight);
   h.state = state;
   h.state_time_s = t_s;
-  r.phase = ContactPhase::none;
   r.plane.reset();
   r.nonsmooth.reset();
   r.flight.begin(state, t_s);
@@ -635,9 +635,8 @@ void World::enter_sustained(std::size_t i, const RigidBodyState& state, double t
     return;
   }
   r.nonsmooth.reset();
-  r.phase = ContactPhase::plane;
   r.plane_seen = PlaneContactCounters{};
-  stones_.set_mode(i, StoneMode::contact);
+  stones_.set_mode(i, StoneMode::plane_contact);
   h.state_time_s = t_s;
   if (r.plane->finished()) {
     // At rest at once (or leaving at once): the outcome comes with the first advance.
@@ -660,8 +659,7 @@ void World::start_nonsmooth(std::size_t i, const RigidBodyState& state, double t
   r.nonsmooth.emplace(body_at(i).board(), body_at(i).setup(), config_.board_material,
                       config_.table_material, state, t_s, config_.options.nonsmooth);
   r.nonsmooth_seen = NonsmoothCounters{};
-  r.phase = ContactPhase::nonsmooth;
-  stones_.set_mode(i, StoneMode::contact);
+  stones_.set_mode(i, StoneMode::nonsmooth_contact);
   h.state = r.nonsmooth->lattice_state();
   h.state_time_s = t_s;
   WorldEvent& e = emit(i, t_s, WorldEventKind::slide, detail, h.state);
@@ -678,7 +676,6 @@ void World::come_to_rest(std::size_t i, const RigidBodyState& state, double t_s,
   stones_.set_mode(i, StoneMode::resting);
   h.state = state;
   h.state_time_s = t_s;
-  r.phase = ContactPhase::none;
   r.plane.reset();
   r.nonsmooth.reset();
   WorldEvent& e = emit(i, t_s, WorldEventKind::rest, detail, state);

@@ -37,7 +37,6 @@ struct StoneHot {
 // Touched at events.
 struct StoneRecord {
   FlightTrack flight;
-  ContactPhase phase = ContactPhase::none;
   std::optional<PlaneContact> plane;
   std::optional<NonsmoothContact> nonsmooth;
   PlaneContactCounters plane_seen;  // the phase's counters already added to the world's
@@ -73,7 +72,8 @@ class StoneTable {
   // The stones not resting (indices), in no particular order.
   const std::vector<std::size_t>& awake() const { return awake_; }
   bool all_resting() const { return awake_.empty(); }
-  // Sets the mode and keeps the awake set in step.
+  // Changes the mode through the table of transitions (world/stone_mode.h; std::logic_error for
+  // a change not in it) and keeps the awake set in step.
   void set_mode(std::size_t i, StoneMode mode);
   // Brings the awake set in step with a mode restored wholesale (a snapshot).
   void sync_awake(std::size_t i);

@@ -163,7 +163,7 @@ class World {
   StoneMode mode(std::size_t stone) const;
   bool is_resting(std::size_t stone) const { return mode(stone) == StoneMode::resting; }
   bool all_resting() const { return stones_.all_resting(); }
-  ContactPhase contact_phase(std::size_t stone) const;
+  ContactPhase contact_phase(std::size_t stone) const;  // derived from mode()
   std::size_t body_of(std::size_t stone) const;
   // In flight: the time of the flight's first contact once found, +infinity while none is known.
   double next_contact_time(std::size_t stone) const;
