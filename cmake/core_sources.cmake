@@ -57,4 +57,5 @@ set(VG_CORE_SOURCES
   src/world/world_body.cpp
   src/world/stone_table.cpp
   src/world/stone_placement.cpp
-  src/world/world.cpp)
+  src/world/world.cpp
+  src/world/world_stones.cpp)
