@@ -54,4 +54,8 @@ set(VG_CORE_SOURCES
   src/world/nonsmooth_contact.cpp
   src/world/flight_track.cpp
   src/world/world_config.cpp
-  src/world/world.cpp)
+  src/world/world_body.cpp
+  src/world/stone_table.cpp
+  src/world/stone_placement.cpp
+  src/world/world.cpp
+  src/world/world_stones.cpp)

@@ -46,7 +46,9 @@ foreach(core_test
     world/test_nonsmooth_contact
     world/test_world
     world/test_world_edges
-    world/test_world_robustness)
+    world/test_world_robustness
+    world/test_world_stones
+    world/test_stone_placement)
   get_filename_component(target ${core_test} NAME)
   catkin_add_gtest(${target} test/${core_test}.cpp)
   target_link_libraries(${target} virtual_go_core GTest::gtest_main)

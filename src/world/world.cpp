@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <string>
 #include <utility>
 
@@ -38,10 +39,9 @@ World::World(const WorldConfig& config, const RigidBodyState& initial_state, dou
 
 World::World(const WorldConfig& config, const std::vector<RigidBodyState>& initial_states,
              double t0_s)
-    : config_((validate_world_config(config), config)),
-      lens_(config.shape),
-      board_(lens_, config.board),
-      exact_(make_integrator("exact", config.motion)) {
+    : config_((validate_world_config(config), config)) {
+  bodies_.emplace_back(WorldBody{config.motion.model, config.shape, std::nullopt},
+                       config.motion.gravity_world, config.board);
   reset(initial_states, t0_s);
 }
 
@@ -49,7 +49,8 @@ World::~World() = default;
 World::World(World&&) noexcept = default;
 World& World::operator=(World&&) noexcept = default;
 
-void World::check_state(const std::string& field, const RigidBodyState& state) const {
+void World::check_state(const std::string& field, const WorldBodyModel& body,
+                        const RigidBodyState& state) const {
   try {
     (void)state.validated();
   } catch (const InvalidArgument& e) {
@@ -57,7 +58,7 @@ void World::check_state(const std::string& field, const RigidBodyState& state) c
   }
   if (!config_.board_enabled) return;
   const RigidBodyState s = state.validated();
-  const BoardContact c = board_.nearest(s);
+  const BoardContact c = body.board().nearest(s);
   const double tolerance = config_.options.time_of_impact.touch_tolerance_m;
   if (c.lens.gap_m < -tolerance) {
     throw InvalidArgument(field, field + ": the stone overlaps the " +
@@ -68,10 +69,27 @@ void World::check_state(const std::string& field, const RigidBodyState& state) c
   }
 }
 
+void World::check_time(const std::string& what, double t_s) const {
+  require_finite("time", t_s);
+  if (t_s < time_) {
+    throw InvalidArgument("time", what + " time " + format_value(t_s) +
+                                      " s is before the world's time " + format_value(time_) +
+                                      " s");
+  }
+}
+
+void World::check_stone_index(std::size_t stone) const {
+  if (stone >= stones_.size()) {
+    throw std::out_of_range("stone index " + std::to_string(stone) + " does not exist (" +
+                            std::to_string(stones_.size()) + " stones)");
+  }
+}
+
 void World::reset(const std::vector<RigidBodyState>& states, double t0_s) {
   require_finite("time", t0_s);
   for (std::size_t i = 0; i < states.size(); ++i) {
-    check_state(states.size() == 1 ? "state" : "state of stone " + std::to_string(i), states[i]);
+    check_state(states.size() == 1 ? "state" : "state of stone " + std::to_string(i), bodies_[0],
+                states[i]);
   }
   start_stones(states, t0_s);
 }
@@ -80,49 +98,12 @@ void World::start_stones(const std::vector<RigidBodyState>& states, double t0_s)
   time_ = t0_s;
   counters_ = WorldCounters{};
   pending_.clear();
-  hot_.assign(states.size(), StoneHot{});
-  records_.clear();
-  records_.resize(states.size());
+  stones_.clear();
   // Every stone starts awake (in flight); one placed at rest comes to rest at its first advance.
-  awake_.resize(states.size());
-  awake_slot_.resize(states.size());
-  for (std::size_t i = 0; i < states.size(); ++i) awake_[i] = awake_slot_[i] = i;
+  for (std::size_t k = 0; k < states.size(); ++k) (void)stones_.add(0);
   for (std::size_t i = 0; i < states.size(); ++i) {
     begin_flight(i, states[i].validated(), t0_s, false);
   }
-}
-
-const RigidBodyState& World::state(std::size_t stone) const { return hot_.at(stone).state; }
-StoneMode World::mode(std::size_t stone) const { return hot_.at(stone).mode; }
-ContactPhase World::contact_phase(std::size_t stone) const { return records_.at(stone).phase; }
-
-void World::set_mode(std::size_t i, StoneMode mode) {
-  hot_[i].mode = mode;
-  sync_awake(i);
-}
-
-void World::sync_awake(std::size_t i) {
-  const bool awake = hot_[i].mode != StoneMode::resting;
-  if (awake == (awake_slot_[i] != kAsleep)) return;
-  if (awake) {
-    awake_slot_[i] = awake_.size();
-    awake_.push_back(i);
-    return;
-  }
-  const std::size_t slot = awake_slot_[i], last = awake_.back();
-  awake_[slot] = last;
-  awake_slot_[last] = slot;
-  awake_.pop_back();
-  awake_slot_[i] = kAsleep;
-}
-
-double World::next_contact_time(std::size_t stone) const {
-  const StoneHot& h = hot_.at(stone);
-  return h.mode == StoneMode::flight ? h.next_contact_s : std::numeric_limits<double>::infinity();
-}
-
-double World::energy(std::size_t stone) const {
-  return body_energy(config_.motion.model, state(stone), config_.motion.gravity_world);
 }
 
 const ContactMaterial& World::material_of(const BoardFeature& feature) const {
@@ -137,15 +118,15 @@ void World::advance_to(double t_s, std::vector<WorldEvent>& events) {
 }
 
 bool World::is_cheap(std::size_t i, double t_s) const {
-  const StoneHot& h = hot_[i];
+  const StoneHot& h = stones_.hot(i);
   return h.mode == StoneMode::resting ||
          (h.mode == StoneMode::flight && t_s < h.next_contact_s && t_s <= h.clear_until_s);
 }
 
 void World::sample_flight(std::size_t i, double t_s) {
-  StoneHot& h = hot_[i];
+  StoneHot& h = stones_.hot(i);
   if (h.mode != StoneMode::flight) return;  // resting: frozen, no work at all
-  if (records_[i].flight.sample(*exact_, h.state, h.state_time_s, t_s)) {
+  if (stones_.record(i).flight.sample(body_at(i).exact(), h.state, h.state_time_s, t_s)) {
     h.state_time_s = t_s;
     ++counters_.flight_steps;
   }
@@ -171,7 +152,7 @@ AdvanceResult World::advance_to(double t_s, std::vector<WorldEvent>& events,
   // Only awake stones are looked at; costly ones in stone order (the order the budget is shared
   // in does not depend on the history of the awake list).
   std::vector<std::size_t> costly;
-  for (const std::size_t i : awake_) {
+  for (const std::size_t i : stones_.awake()) {
     ++counters_.stones_visited;
     if (!is_cheap(i, t_s)) costly.push_back(i);
   }
@@ -188,7 +169,8 @@ AdvanceResult World::advance_to(double t_s, std::vector<WorldEvent>& events,
   std::vector<Snapshot> snapshots;
   for (std::size_t k = 0; k < costly.size(); ++k) {
     const std::size_t i = costly[k];
-    if (bounded && costly.size() > 1) snapshots.push_back(Snapshot{i, hot_[i], records_[i]});
+    if (bounded && costly.size() > 1)
+      snapshots.push_back(Snapshot{i, stones_.hot(i), stones_.record(i)});
     long limit = std::numeric_limits<long>::max();
     if (bounded) {
       const long left = std::max(0L, budget.max_steps - (counters_.work() - work_start));
@@ -197,15 +179,15 @@ AdvanceResult World::advance_to(double t_s, std::vector<WorldEvent>& events,
     }
     if (advance_stone(i, target, limit)) continue;
     stopped = true;
-    const double stop = hot_[i].state_time_s;
+    const double stop = stones_.hot(i).state_time_s;
     if (!(stop < target)) continue;  // stopped at the target itself, with work left there
     target = stop;
     for (std::size_t j = 0; j + 1 < snapshots.size(); ++j) {
       const Snapshot& snap = snapshots[j];
-      if (!(hot_[snap.stone].state_time_s > target)) continue;
-      hot_[snap.stone] = snap.hot;
-      records_[snap.stone] = snap.record;
-      sync_awake(snap.stone);  // it may have come to rest after the snapshot
+      if (!(stones_.hot(snap.stone).state_time_s > target)) continue;
+      stones_.hot(snap.stone) = snap.hot;
+      stones_.record(snap.stone) = snap.record;
+      stones_.sync_awake(snap.stone);  // it may have come to rest after the snapshot
       pending_.erase(std::remove_if(pending_.begin(), pending_.end(),
                                     [&](const WorldEvent& e) {
                                       return e.stone == snap.stone &&
@@ -216,7 +198,7 @@ AdvanceResult World::advance_to(double t_s, std::vector<WorldEvent>& events,
       (void)advance_stone(snap.stone, target, std::numeric_limits<long>::max());
     }
   }
-  for (const std::size_t i : awake_) {
+  for (const std::size_t i : stones_.awake()) {
     if (is_cheap(i, target)) sample_flight(i, target);
   }
   time_ = target;
@@ -240,7 +222,7 @@ void World::flush(std::vector<WorldEvent>& events) {
 
 bool World::advance_stone(std::size_t i, double t_s, long work_limit) {
   for (;;) {
-    StoneHot& h = hot_[i];
+    StoneHot& h = stones_.hot(i);
     if (h.mode == StoneMode::resting) return true;
     if (counters_.work() >= work_limit) return false;
     bool went_on = false;  // false: a transition happened, go on in the new mode
@@ -250,31 +232,34 @@ bool World::advance_stone(std::size_t i, double t_s, long work_limit) {
       case StoneMode::flight:
         went_on = advance_flight(i, t_s);
         break;
-      case StoneMode::contact:
-        went_on = records_[i].phase == ContactPhase::plane ? advance_plane(i, t_s, work_limit)
-                                                           : advance_nonsmooth(i, t_s, work_limit);
+      case StoneMode::plane_contact:
+        went_on = advance_plane(i, t_s, work_limit);
+        break;
+      case StoneMode::nonsmooth_contact:
+        went_on = advance_nonsmooth(i, t_s, work_limit);
         break;
     }
-    if (went_on) return !(hot_[i].state_time_s < t_s) || hot_[i].mode == StoneMode::resting;
+    if (went_on)
+      return !(stones_.hot(i).state_time_s < t_s) || stones_.hot(i).mode == StoneMode::resting;
   }
 }
 
 TimeOfImpact World::search(std::size_t i, double from_s, double to_s) {
-  StoneRecord& r = records_[i];
+  StoneRecord& r = stones_.record(i);
   const TimeOfImpact found =
-      board_time_of_impact(board_, config_.motion, r.flight.anchor(), r.flight.anchor_time_s(),
-                           from_s, to_s, config_.options.time_of_impact);
+      board_time_of_impact(body_at(i).board(), body_at(i).setup(), r.flight.anchor(),
+                           r.flight.anchor_time_s(), from_s, to_s, config_.options.time_of_impact);
   ++counters_.contact_searches;
   counters_.contact_search_steps += found.advancement_steps + found.polish_steps;
   r.flight.record_search(found);
-  hot_[i].next_contact_s = r.flight.contact_time_s();
-  hot_[i].clear_until_s = r.flight.clear_until_s();
+  stones_.hot(i).next_contact_s = r.flight.contact_time_s();
+  stones_.hot(i).clear_until_s = r.flight.clear_until_s();
   return found;
 }
 
 bool World::advance_flight(std::size_t i, double t_s) {
-  StoneHot& h = hot_[i];
-  StoneRecord& r = records_[i];
+  StoneHot& h = stones_.hot(i);
+  StoneRecord& r = stones_.record(i);
   // Extend the search only when the flight outlives what is known.
   while (!r.flight.contact() && r.flight.clear_until_s() < t_s) {
     const double from = r.flight.clear_until_s();
@@ -291,7 +276,7 @@ bool World::advance_flight(std::size_t i, double t_s) {
     handle_contact(i);
     return false;
   }
-  if (r.flight.sample(*exact_, h.state, h.state_time_s, t_s)) {
+  if (r.flight.sample(body_at(i).exact(), h.state, h.state_time_s, t_s)) {
     h.state_time_s = t_s;
     ++counters_.flight_steps;
   }
@@ -299,8 +284,8 @@ bool World::advance_flight(std::size_t i, double t_s) {
 }
 
 bool World::advance_plane(std::size_t i, double t_s, long work_limit) {
-  StoneHot& h = hot_[i];
-  StoneRecord& r = records_[i];
+  StoneHot& h = stones_.hot(i);
+  StoneRecord& r = stones_.record(i);
   PlaneContactOutcome o;
   try {
     o = r.plane->advance(t_s, std::max(1L, work_limit - counters_.work()));
@@ -337,8 +322,8 @@ bool World::advance_plane(std::size_t i, double t_s, long work_limit) {
 }
 
 bool World::advance_nonsmooth(std::size_t i, double t_s, long work_limit) {
-  StoneHot& h = hot_[i];
-  StoneRecord& r = records_[i];
+  StoneHot& h = stones_.hot(i);
+  StoneRecord& r = stones_.record(i);
   const NonsmoothOutcome o = r.nonsmooth->advance(t_s, std::max(1L, work_limit - counters_.work()));
   sync_nonsmooth_counters(i);
   h.state = o.state;
@@ -364,7 +349,7 @@ bool World::advance_nonsmooth(std::size_t i, double t_s, long work_limit) {
 // Transitions
 
 bool World::transition_allowed(std::size_t i, double t_s) {
-  StoneRecord& r = records_[i];
+  StoneRecord& r = stones_.record(i);
   if (t_s != r.transition_time_s) {
     r.transition_time_s = t_s;
     r.transitions_at_instant = 0;
@@ -374,16 +359,15 @@ bool World::transition_allowed(std::size_t i, double t_s) {
 
 void World::begin_flight(std::size_t i, const RigidBodyState& state, double t_s,
                          bool after_lift_off) {
-  StoneHot& h = hot_[i];
-  StoneRecord& r = records_[i];
+  StoneHot& h = stones_.hot(i);
+  StoneRecord& r = stones_.record(i);
   if (!transition_allowed(i, t_s)) {
     start_nonsmooth(i, state, t_s, WorldEventDetail::edge_contact, nullptr);
     return;
   }
-  set_mode(i, StoneMode::flight);
+  stones_.set_mode(i, StoneMode::flight);
   h.state = state;
   h.state_time_s = t_s;
-  r.phase = ContactPhase::none;
   r.plane.reset();
   r.nonsmooth.reset();
   r.flight.begin(state, t_s);
@@ -397,14 +381,14 @@ void World::begin_flight(std::size_t i, const RigidBodyState& state, double t_s,
   if (after_lift_off) {
     // The stone leaves its plane with gap, normal velocity and normal force all zero; the gap
     // opens at third order. Find when it is resolvably open (docs/physics.md, "World").
-    const ExactMotion flight(config_.motion, state);
+    const ExactMotion flight(body_at(i).setup(), state);
     bool open = false;
     for (double delta = kFirstProbeS; delta <= config_.options.lift_off_probe_s; delta *= 2.0) {
       const RigidBodyState s = flight.state_at(delta);
-      const BoardContact c = board_.nearest(s);
+      const BoardContact c = body_at(i).board().nearest(s);
       if (c.lens.gap_m < -config_.options.time_of_impact.touch_tolerance_m) break;  // closing
       const double rate = c.lens.normal_world.dot(
-          point_velocity_world(config_.motion.model, s, c.lens.point_world));
+          point_velocity_world(body_at(i).setup().model, s, c.lens.point_world));
       if (c.lens.gap_m > kResolvableGapM && rate > 0.0) {
         from = t_s + delta;
         open = true;
@@ -425,7 +409,7 @@ void World::begin_flight(std::size_t i, const RigidBodyState& state, double t_s,
 }
 
 void World::handle_contact(std::size_t i) {
-  const TimeOfImpact c = *records_[i].flight.contact();
+  const TimeOfImpact c = *stones_.record(i).flight.contact();
   if (!(c.approach_speed_mps > kTouchingSpeedMps)) {
     // Not in flight at all: resting on (or sliding along) the surface already.
     enter_sustained(i, c.state, c.time_s, c.contact);
@@ -433,9 +417,9 @@ void World::handle_contact(std::size_t i) {
   }
   ImpactOptions options;
   options.zeno_height_m = config_.zeno_height_m;
-  const Impact impact = resolve_impact(config_.motion.model, c.state, c.contact.lens.point_world,
-                                       c.contact.lens.normal_world, material_of(c.contact.feature),
-                                       config_.motion.gravity_world, options);
+  const Impact impact = resolve_impact(
+      body_at(i).setup().model, c.state, c.contact.lens.point_world, c.contact.lens.normal_world,
+      material_of(c.contact.feature), body_at(i).setup().gravity_world, options);
   ++counters_.impacts;
   counters_.impact_slip_steps += impact.slip_steps;
   if (impact.frictionless_fallback) ++counters_.impact_fallbacks;
@@ -455,24 +439,26 @@ void World::handle_contact(std::size_t i) {
 
 void World::enter_sustained(std::size_t i, const RigidBodyState& state, double t_s,
                             const BoardContact& contact) {
-  StoneHot& h = hot_[i];
-  StoneRecord& r = records_[i];
+  StoneHot& h = stones_.hot(i);
+  StoneRecord& r = stones_.record(i);
   if (!transition_allowed(i, t_s)) {
     start_nonsmooth(i, state, t_s, WorldEventDetail::edge_contact, &contact);
     return;
   }
-  const std::optional<SupportPlane> plane = support_plane(board_, contact, lens_pose(state), 0.0);
+  const std::optional<SupportPlane> plane =
+      support_plane(body_at(i).board(), contact, lens_pose(state), 0.0);
   if (!plane) {
     start_nonsmooth(i, state, t_s, WorldEventDetail::edge_contact, &contact);
     return;
   }
   // Exactly onto the plane: the impact or the fallback leaves a gap of round-off size.
-  const RigidBodyState on_plane = placed_on_plane(lens_, state, plane->height_m);
+  const RigidBodyState on_plane = placed_on_plane(body_at(i).lens(), state, plane->height_m);
   PlaneContactOptions options = config_.options.plane_contact;
-  options.clearance_m = support_plane_clearance(board_, *plane);
+  options.clearance_m = support_plane_clearance(body_at(i).board(), *plane);
   try {
-    r.plane.emplace(config_.motion.model, lens_, config_.motion.gravity_world, plane->height_m,
-                    plane->region, material_of(plane->feature), on_plane, t_s, options);
+    r.plane.emplace(body_at(i).setup().model, body_at(i).lens(), body_at(i).setup().gravity_world,
+                    plane->height_m, plane->region, material_of(plane->feature), on_plane, t_s,
+                    options);
   } catch (const InvalidArgument&) {
     // The plane model refuses the state (a normal velocity left above its tolerance): the
     // fallback can take any contact.
@@ -481,9 +467,8 @@ void World::enter_sustained(std::size_t i, const RigidBodyState& state, double t
     return;
   }
   r.nonsmooth.reset();
-  r.phase = ContactPhase::plane;
   r.plane_seen = PlaneContactCounters{};
-  set_mode(i, StoneMode::contact);
+  stones_.set_mode(i, StoneMode::plane_contact);
   h.state_time_s = t_s;
   if (r.plane->finished()) {
     // At rest at once (or leaving at once): the outcome comes with the first advance.
@@ -500,18 +485,17 @@ void World::enter_sustained(std::size_t i, const RigidBodyState& state, double t
 
 void World::start_nonsmooth(std::size_t i, const RigidBodyState& state, double t_s,
                             WorldEventDetail detail, const BoardContact* contact) {
-  StoneHot& h = hot_[i];
-  StoneRecord& r = records_[i];
+  StoneHot& h = stones_.hot(i);
+  StoneRecord& r = stones_.record(i);
   r.plane.reset();
-  r.nonsmooth.emplace(board_, config_.motion, config_.board_material, config_.table_material, state,
-                      t_s, config_.options.nonsmooth);
+  r.nonsmooth.emplace(body_at(i).board(), body_at(i).setup(), config_.board_material,
+                      config_.table_material, state, t_s, config_.options.nonsmooth);
   r.nonsmooth_seen = NonsmoothCounters{};
-  r.phase = ContactPhase::nonsmooth;
-  set_mode(i, StoneMode::contact);
+  stones_.set_mode(i, StoneMode::nonsmooth_contact);
   h.state = r.nonsmooth->lattice_state();
   h.state_time_s = t_s;
   WorldEvent& e = emit(i, t_s, WorldEventKind::slide, detail, h.state);
-  const BoardContact c = contact ? *contact : board_.nearest(h.state);
+  const BoardContact c = contact ? *contact : body_at(i).board().nearest(h.state);
   e.has_feature = true;
   e.feature = c.feature;
   e.part = c.lens.part;
@@ -519,17 +503,16 @@ void World::start_nonsmooth(std::size_t i, const RigidBodyState& state, double t
 
 void World::come_to_rest(std::size_t i, const RigidBodyState& state, double t_s,
                          WorldEventDetail detail) {
-  StoneHot& h = hot_[i];
-  StoneRecord& r = records_[i];
-  set_mode(i, StoneMode::resting);
+  StoneHot& h = stones_.hot(i);
+  StoneRecord& r = stones_.record(i);
+  stones_.set_mode(i, StoneMode::resting);
   h.state = state;
   h.state_time_s = t_s;
-  r.phase = ContactPhase::none;
   r.plane.reset();
   r.nonsmooth.reset();
   WorldEvent& e = emit(i, t_s, WorldEventKind::rest, detail, state);
   if (config_.board_enabled) {
-    const BoardContact c = board_.nearest(state);
+    const BoardContact c = body_at(i).board().nearest(state);
     e.has_feature = true;
     e.feature = c.feature;
     e.part = c.lens.part;
@@ -538,24 +521,19 @@ void World::come_to_rest(std::size_t i, const RigidBodyState& state, double t_s,
 
 void World::set_state(std::size_t stone, const RigidBodyState& state, double t_s,
                       std::vector<WorldEvent>& events) {
-  if (stone >= hot_.size()) {
+  if (stone >= stones_.size()) {
     throw InvalidArgument("stone", "stone " + std::to_string(stone) + " does not exist (" +
-                                       std::to_string(hot_.size()) + " stones)");
+                                       std::to_string(stones_.size()) + " stones)");
   }
-  require_finite("time", t_s);
-  if (t_s < time_) {
-    throw InvalidArgument("time", "state time " + format_value(t_s) +
-                                      " s is before the world's time " + format_value(time_) +
-                                      " s");
-  }
-  check_state("state", state);
+  check_time("state", t_s);
+  check_state("state", bodies_[stones_.body(stone)], state);
   if (t_s > time_) advance_to(t_s, events);
   const RigidBodyState s = state.validated();
-  if (hot_[stone].mode == StoneMode::resting) {
+  if (stones_.hot(stone).mode == StoneMode::resting) {
     emit(stone, t_s, WorldEventKind::wake, WorldEventDetail::wake, s);
   }
   // A command is a new start: the same-instant guard counts from here.
-  records_[stone].transition_time_s = -std::numeric_limits<double>::infinity();
+  stones_.record(stone).transition_time_s = -std::numeric_limits<double>::infinity();
   begin_flight(stone, s, t_s, false);
   (void)advance_stone(stone, t_s, std::numeric_limits<long>::max());
   flush(events);
@@ -565,7 +543,7 @@ void World::set_state(std::size_t stone, const RigidBodyState& state, double t_s
 // Bookkeeping
 
 void World::sync_plane_counters(std::size_t i) {
-  StoneRecord& r = records_[i];
+  StoneRecord& r = stones_.record(i);
   const PlaneContactCounters& c = r.plane->counters();
   counters_.plane_contact_steps += c.steps - r.plane_seen.steps;
   counters_.plane_contact_rhs += c.rhs_evaluations - r.plane_seen.rhs_evaluations;
@@ -573,7 +551,7 @@ void World::sync_plane_counters(std::size_t i) {
 }
 
 void World::sync_nonsmooth_counters(std::size_t i) {
-  StoneRecord& r = records_[i];
+  StoneRecord& r = stones_.record(i);
   const NonsmoothCounters& c = r.nonsmooth->counters();
   counters_.nonsmooth_steps += c.steps - r.nonsmooth_seen.steps;
   counters_.nonsmooth_impulses += c.impulses - r.nonsmooth_seen.impulses;
@@ -586,6 +564,7 @@ WorldEvent& World::emit(std::size_t i, double t_s, WorldEventKind kind, WorldEve
   WorldEvent e;
   e.time_s = t_s;
   e.stone = i;
+  e.id = stones_.id(i);
   e.kind = kind;
   e.detail = detail;
   e.state = state;

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <set>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,23 @@ TEST(WorldEvent, EveryDetailHasItsOwnName) {
   }
   EXPECT_EQ(vg::stone_mode_name(vg::StoneMode::resting), "resting");
   EXPECT_EQ(vg::contact_phase_name(vg::ContactPhase::nonsmooth), "nonsmooth");
+}
+
+// One state per stone and one table of transitions (world/stone_mode.h): a resting stone only
+// wakes into a flight; rest is reached only from a contact; a flight never rests directly.
+TEST(StoneMode, OneTableOfTransitions) {
+  using M = vg::StoneMode;
+  const M all[] = {M::flight, M::plane_contact, M::nonsmooth_contact, M::resting};
+  std::set<std::string> names;
+  for (const M m : all) EXPECT_TRUE(names.insert(vg::stone_mode_name(m)).second);
+  for (const M m : all) {
+    EXPECT_EQ(vg::is_transition(M::resting, m), m == M::flight) << vg::stone_mode_name(m);
+    EXPECT_EQ(vg::is_transition(m, M::resting), vg::in_contact(m)) << vg::stone_mode_name(m);
+  }
+  EXPECT_EQ(vg::transition(M::flight, M::plane_contact), M::plane_contact);
+  EXPECT_THROW(vg::transition(M::resting, M::plane_contact), std::logic_error);
+  EXPECT_EQ(vg::contact_phase(M::nonsmooth_contact), vg::ContactPhase::nonsmooth);
+  EXPECT_EQ(vg::contact_phase(M::resting), vg::ContactPhase::none);
 }
 
 TEST(WorldEvent, PlaneModesMapOntoTheRegimeTheyStart) {

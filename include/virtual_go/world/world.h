@@ -14,9 +14,11 @@
 // Stones do not interact yet (stone-stone contact is later work): each one's events are found on
 // its own, then merged in time order.
 //
-// Per-stone data is kept in two arrays (as in Box2D v3's solver sets): the hot part every call
-// reads (state, mode, the times up to which a flight needs only sampling) and the bookkeeping
-// touched at events (the flight's anchor and cache, the contact phase).
+// Stones live in a table (world/stone_table.h): each has a StoneId given once and never again,
+// refers to a body (world/world_body.h: its motion model and lens; one body per colour, or the
+// config's body), and is addressed either by id or by index (0 .. stone_count()-1, the order of
+// the ids; indices shift when a stone is removed, ids never change). Stones are added, removed
+// and cleared while the world runs; a removed stone costs nothing afterwards.
 #pragma once
 
 #include <cstddef>
@@ -30,7 +32,10 @@
 #include "virtual_go/go/board_distance.h"
 #include "virtual_go/world/flight_track.h"
 #include "virtual_go/world/nonsmooth_contact.h"
+#include "virtual_go/world/stone_id.h"
 #include "virtual_go/world/stone_mode.h"
+#include "virtual_go/world/stone_table.h"
+#include "virtual_go/world/world_body.h"
 #include "virtual_go/world/world_config.h"
 #include "virtual_go/world/world_counters.h"
 #include "virtual_go/world/world_event.h"
@@ -53,7 +58,8 @@ struct AdvanceResult {
 
 class World {
  public:
-  // One stone, or several, at t0_s (world time line, s). Throws InvalidArgument naming the field
+  // One stone, or several, at t0_s (world time line, s), each of the config's body (body 0) with
+  // ids 0, 1, ... in the order given. Throws InvalidArgument naming the field
   // for a bad configuration, a bad state ("state", "stone 2: ...") or a stone overlapping the
   // board or the table by more than the touch tolerance. Events at t0 (a stone placed resting on
   // the board comes to rest at once) are reported by the first advance_to.
@@ -63,8 +69,9 @@ class World {
   World(World&&) noexcept;
   World& operator=(World&&) noexcept;
 
-  // Starts over with these stones at t0_s; counters are zeroed. Same checks as the constructor;
-  // on error nothing changes.
+  // Starts over with these stones (of the config's body) at t0_s; counters are zeroed. Same
+  // checks as the constructor; on error nothing changes. The stones get new ids (ids are never
+  // given twice in one world); bodies added so far are kept.
   void reset(const std::vector<RigidBodyState>& states, double t0_s);
 
   // Advances every stone to t_s (>= time()) through all events, appending them in time order
@@ -97,51 +104,88 @@ class World {
   void set_state(std::size_t stone, const RigidBodyState& state, double t_s,
                  std::vector<WorldEvent>& events);
 
+  // ---- Bodies. Body 0 is the config's (motion, shape); others are added. A body is never
+  // removed (stones refer to it by its index).
+  // Adds a body (the world's gravity and board apply). Throws InvalidArgument ("body/inertia",
+  // "gravity") before anything changes.
+  std::size_t add_body(const WorldBody& body);
+  // The body of a colour: the default StoneSet's (black slate 22.2 mm, white shell 21.9 mm, size
+  // 33) with the config's motion-model kind, made at its first use and shared by every stone of
+  // that colour afterwards. Throws InvalidArgument ("color") for a value outside the enum.
+  std::size_t color_body(StoneColor color);
+  std::size_t body_count() const { return bodies_.size(); }
+  const WorldBodyModel& body_model(std::size_t body) const;  // std::out_of_range if unknown
+
+  // ---- Stones by id.
+  // Adds a stone of `body` (or of the colour's body) with `state` at t_s (>= time(); the world is
+  // first advanced to t_s, its events appended). Events the new stone has at t_s itself follow
+  // (a stone set down resting on the board rests at once: its `rest` event). Throws
+  // InvalidArgument before anything changes: "body" (unknown), "color", "time", "state" (not
+  // finite, zero quaternion, or overlapping the board or the table).
+  StoneId add_stone(std::size_t body, const RigidBodyState& state, double t_s,
+                    std::vector<WorldEvent>& events);
+  StoneId add_stone(StoneColor color, const RigidBodyState& state, double t_s,
+                    std::vector<WorldEvent>& events);
+  // Advances to t_s, then removes the stone (no event: the caller asked). Throws
+  // InvalidArgument ("stone" for an unknown or removed id, "time") before anything changes.
+  void remove_stone(StoneId id, double t_s, std::vector<WorldEvent>& events);
+  // Removes every stone; time() becomes t_s (>= time(), else InvalidArgument "time"). Bodies,
+  // counters and the id sequence are kept.
+  void clear(double t_s);
+  // set_state by id.
+  void set_state(StoneId id, const RigidBodyState& state, double t_s,
+                 std::vector<WorldEvent>& events);
+  // Moves a resting stone lying on the board's top face horizontally to (x, y) without waking
+  // it: it stays resting, its orientation and height unchanged, its velocities zero (the
+  // placement's nudge, world/stone_placement.h). Advances to t_s first. Throws InvalidArgument
+  // before anything changes: "stone" (unknown, or not resting), "position" (not finite, or its
+  // lowest point would leave the top face), "time".
+  void move_resting_stone(StoneId id, const Eigen::Vector2d& position_xy_world, double t_s,
+                          std::vector<WorldEvent>& events);
+
+  bool contains(StoneId id) const { return stones_.index_of(id).has_value(); }
+  // The index of a live stone; InvalidArgument ("stone") naming the id otherwise.
+  std::size_t index_of(StoneId id) const;
+  StoneId id(std::size_t stone) const;  // std::out_of_range if no such index
+  // The live stones' ids in index order: `for (StoneId id : world.stone_ids())`.
+  const std::vector<StoneId>& stone_ids() const { return stones_.ids(); }
+  const RigidBodyState& state(StoneId id) const { return state(index_of(id)); }
+  StoneMode mode(StoneId id) const { return mode(index_of(id)); }
+  bool is_resting(StoneId id) const { return is_resting(index_of(id)); }
+  std::size_t body_of(StoneId id) const { return body_of(index_of(id)); }
+  std::optional<StoneColor> color(StoneId id) const;
+  double energy(StoneId id) const { return energy(index_of(id)); }
+
+  // ---- Stones by index (std::out_of_range for an index >= stone_count()).
   double time() const { return time_; }
-  std::size_t stone_count() const { return hot_.size(); }
+  std::size_t stone_count() const { return stones_.size(); }
   const RigidBodyState& state(std::size_t stone) const;  // at time()
   StoneMode mode(std::size_t stone) const;
   bool is_resting(std::size_t stone) const { return mode(stone) == StoneMode::resting; }
-  bool all_resting() const { return awake_.empty(); }
-  ContactPhase contact_phase(std::size_t stone) const;
+  bool all_resting() const { return stones_.all_resting(); }
+  ContactPhase contact_phase(std::size_t stone) const;  // derived from mode()
+  std::size_t body_of(std::size_t stone) const;
   // In flight: the time of the flight's first contact once found, +infinity while none is known.
   double next_contact_time(std::size_t stone) const;
-  // Total energy (J): 1/2 m v^2 + 1/2 omega . L - m g . x_G.
+  // Total energy (J) under the stone's own body: 1/2 m v^2 + 1/2 omega . L - m g . x_G
+  // (body_energy).
   double energy(std::size_t stone) const;
 
   const WorldConfig& config() const { return config_; }
-  const MotionSetup& setup() const { return config_.motion; }
-  const LensGeometry& lens() const { return lens_; }
-  const BoardDistance& board_distance() const { return board_; }
+  // The config's body (body 0): the single-stone node's stone.
+  const MotionSetup& setup() const { return bodies_[0].setup(); }
+  const LensGeometry& lens() const { return bodies_[0].lens(); }
+  const BoardDistance& board_distance() const { return bodies_[0].board(); }
   const WorldCounters& counters() const { return counters_; }
 
  private:
-  // Read on every call.
-  struct StoneHot {
-    RigidBodyState state;
-    double state_time_s = 0.0;
-    StoneMode mode = StoneMode::flight;
-    // Flight: sampling alone suffices for t < next_contact_s and t <= clear_until_s.
-    double next_contact_s = std::numeric_limits<double>::infinity();
-    double clear_until_s = std::numeric_limits<double>::infinity();
-  };
-  // Touched at events.
-  struct StoneRecord {
-    FlightTrack flight;
-    ContactPhase phase = ContactPhase::none;
-    std::optional<PlaneContact> plane;
-    std::optional<NonsmoothContact> nonsmooth;
-    PlaneContactCounters plane_seen;  // the phase's counters already added to the world's
-    NonsmoothCounters nonsmooth_seen;
-    double transition_time_s = -std::numeric_limits<double>::infinity();
-    int transitions_at_instant = 0;
-  };
-
-  void check_state(const std::string& field, const RigidBodyState& state) const;
-  // Sets the stone's mode and keeps awake_ in step with it: every mode change goes through here
-  // (or through sync_awake after a state is restored wholesale).
-  void set_mode(std::size_t i, StoneMode mode);
-  void sync_awake(std::size_t i);
+  void check_state(const std::string& field, const WorldBodyModel& body,
+                   const RigidBodyState& state) const;
+  void check_time(const std::string& what, double t_s) const;
+  void check_stone_index(std::size_t stone) const;
+  const WorldBodyModel& body_at(std::size_t i) const { return bodies_[stones_.body(i)]; }
+  // A new row of `body` in flight from `state` at t_s, its events at t_s processed.
+  std::size_t start_stone(std::size_t body, const RigidBodyState& state, double t_s);
   void start_stones(const std::vector<RigidBodyState>& states, double t0_s);
   // True when the stone reached t_s (or rests); false when the work counter hit work_limit
   // first (the stone is then at hot_[i].state_time_s < t_s).
@@ -169,17 +213,10 @@ class World {
   void flush(std::vector<WorldEvent>& events);
 
   WorldConfig config_;
-  LensGeometry lens_;
-  BoardDistance board_;
-  std::unique_ptr<Integrator> exact_;
+  std::vector<WorldBodyModel> bodies_;  // [0]: the config's
+  std::optional<std::size_t> color_bodies_[2];
   double time_ = 0.0;
-  std::vector<StoneHot> hot_;
-  std::vector<StoneRecord> records_;
-  // The stones not resting, in no particular order (removal swaps with the last), and each
-  // stone's slot in it (kAsleep while it rests). Only these are visited by advance_to.
-  static constexpr std::size_t kAsleep = std::numeric_limits<std::size_t>::max();
-  std::vector<std::size_t> awake_;
-  std::vector<std::size_t> awake_slot_;
+  StoneTable stones_;  // only its awake stones are visited by advance_to
   std::vector<WorldEvent> pending_;
   WorldCounters counters_;
 };

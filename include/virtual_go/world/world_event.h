@@ -5,12 +5,14 @@
 #pragma once
 
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "virtual_go/body/rigid_body_state.h"
 #include "virtual_go/contact/plane_contact.h"
 #include "virtual_go/go/board_distance.h"
+#include "virtual_go/world/stone_id.h"
 
 namespace virtual_go {
 
@@ -55,8 +57,12 @@ enum class WorldEventDetail {
 };
 
 struct WorldEvent {
-  double time_s = 0.0;  // world time line, s
-  std::size_t stone = 0;
+  double time_s = 0.0;    // world time line, s
+  std::size_t stone = 0;  // the stone's index when the event was handed out
+  StoneId id;             // the stone's identity (stable while stones come and go)
+  // The other stone of a stone-stone contact (none: the board, the table or no contact). Not
+  // set yet: stones do not interact yet (issue 15).
+  std::optional<StoneId> other;
   WorldEventKind kind = WorldEventKind::impact;
   WorldEventDetail detail = WorldEventDetail::impact;
   RigidBodyState state;  // the exact state at time_s, after the event
