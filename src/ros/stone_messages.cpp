@@ -125,6 +125,8 @@ StoneEvent to_event_msg(const SegmentEvent& event, const std::string& world_fram
   msg.segment = event.segment;
   msg.reason = event_reason_name(event.reason);
   msg.detail = event.detail;
+  msg.stone = event.stone;
+  msg.other_stone = event.other_stone;
   msg.pose = to_pose_msg(event.output);
   msg.twist = to_world_twist_msg(event.output);
   msg.angular_momentum = to_vector_msg(event.output.angular_momentum_world);
