@@ -15,7 +15,8 @@ add_library(virtual_go_bag_report
 # (above; generate_messages() adds the devel space's include folder): exported PUBLIC they would
 # be this machine's absolute paths (catkin_lint: external_interface_path, external_directory).
 target_include_directories(virtual_go_bag_report PUBLIC include)
-target_link_libraries(virtual_go_bag_report PUBLIC ${catkin_LIBRARIES} virtual_go_core)
+# virtual_go_sim: the event type and its reason names (sim/segment_event.h), shared with the node.
+target_link_libraries(virtual_go_bag_report PUBLIC ${catkin_LIBRARIES} virtual_go_sim)
 # The reader includes the generated virtual_go/StoneInfo.h and StoneEvent.h.
 add_dependencies(virtual_go_bag_report ${${PROJECT_NAME}_EXPORTED_TARGETS}
   ${catkin_EXPORTED_TARGETS})

@@ -8,6 +8,7 @@ add_library(virtual_go_sim
   src/sim/stone_parameters.cpp
   src/sim/state_request.cpp
   src/sim/segment_event.cpp
+  src/sim/stone_states.cpp
   src/sim/state_output.cpp
   src/sim/stone_simulation.cpp
   src/sim/mesh_file.cpp
@@ -24,7 +25,8 @@ add_executable(stone_node
   src/ros/stone_node_help.cpp
   src/ros/param_reader.cpp
   src/ros/stone_messages.cpp
-  src/ros/board_markers.cpp)
+  src/ros/board_markers.cpp
+  src/ros/stone_markers.cpp)
 target_link_libraries(stone_node virtual_go_sim ${catkin_LIBRARIES})
 add_dependencies(stone_node ${${PROJECT_NAME}_EXPORTED_TARGETS} ${catkin_EXPORTED_TARGETS})
 

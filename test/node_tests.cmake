@@ -12,6 +12,7 @@ catkin_add_gtest(node_adapter_test
   test/sim/test_stone_simulation_board.cpp
   test/sim/test_stone_simulation_controls.cpp
   test/sim/test_sim_pacer.cpp
+  test/sim/test_stone_states.cpp
   test/sim/test_mesh_file.cpp
   test/sim/test_clock_watch.cpp
   test/sim/test_sim_diagnostics.cpp)
@@ -28,7 +29,8 @@ add_rostest_gtest(stone_node_rostest test/ros/stone_node_tf.test
   test/ros/test_stone_node_sim_time.cpp
   test/ros/test_stone_node_params.cpp
   test/ros/test_stone_node_board.cpp
-  test/ros/test_stone_node_controls.cpp)
+  test/ros/test_stone_node_controls.cpp
+  test/ros/test_stone_node_stones.cpp)
 target_link_libraries(stone_node_rostest ${catkin_LIBRARIES} GTest::gtest)
 target_compile_definitions(stone_node_rostest PRIVATE STONE_NODE_PATH="$<TARGET_FILE:stone_node>")
 add_dependencies(stone_node_rostest stone_node ${${PROJECT_NAME}_EXPORTED_TARGETS}
@@ -41,7 +43,8 @@ foreach(node_test
     stone_node_hz
     stone_node_board
     stone_node_controls
-    stone_node_own_clock)
+    stone_node_own_clock
+    stone_node_stones)
   add_rostest(test/ros/${node_test}.test DEPENDENCIES stone_node_rostest stone_node)
 endforeach()
 
@@ -56,3 +59,9 @@ add_rostest(test/ros/stone_node_clock_wait.test DEPENDENCIES stone_node)
 # The board's drawing for rviz (ROS-free): gtest, no master.
 catkin_add_gtest(board_drawing_test test/sim/test_board_drawing.cpp)
 target_link_libraries(board_drawing_test virtual_go_sim GTest::gtest_main)
+
+# Every stone's MarkerArray (ROS message types, no master): gtest.
+catkin_add_gtest(stone_markers_test test/ros/test_stone_markers.cpp src/ros/stone_markers.cpp)
+target_include_directories(stone_markers_test PRIVATE include)
+target_link_libraries(stone_markers_test ${catkin_LIBRARIES} GTest::gtest_main)
+add_dependencies(stone_markers_test ${catkin_EXPORTED_TARGETS})

@@ -86,6 +86,24 @@ bool other_version(const rosbag::MessageInstance& m) {
          m.getMD5Sum() != ros::message_traits::md5sum<M>();
 }
 
+// virtual_go/StoneEvent before it named its stone: the same fields without the two names at the
+// end, so its bytes followed by two empty strings are a message of this version.
+constexpr char kEventMd5BeforeNames[] = "297586e22de15a89da82e4c718f1324f";
+
+std::optional<StoneEvent> decode_event_before_names(std::vector<std::uint8_t> bytes) {
+  const std::size_t recorded = bytes.size();
+  bytes.insert(bytes.end(), 8, 0);  // two string lengths of 0
+  StoneEvent msg = checked_deserialize<StoneEvent>(bytes);
+  // A message cut short would borrow the padding for its own fields.
+  if (ros::serialization::serializationLength(msg) != recorded + 8) {
+    throw CorruptMessage(
+        "a ~events message of the version before stone names does not end where "
+        "its fields do (" +
+        std::to_string(recorded) + " bytes)");
+  }
+  return msg;
+}
+
 // Corrupt messages named in the problems; past this many, only counted.
 constexpr std::size_t kCorruptNamed = 5;
 
@@ -162,6 +180,11 @@ class Reader {
     }
     if (corrupt_ > kCorruptNamed) {
       out_.problems.push_back(std::to_string(corrupt_) + " corrupt messages were skipped in all (" +
+                              std::to_string(kCorruptNamed) + " named above)");
+    }
+    if (unknown_reasons_ > kCorruptNamed) {
+      out_.problems.push_back(std::to_string(unknown_reasons_) +
+                              " ~events messages with an unknown reason were skipped in all (" +
                               std::to_string(kCorruptNamed) + " named above)");
     }
     const std::string world = out_.info ? out_.info->world_frame : "world";
@@ -288,19 +311,37 @@ class Reader {
   }
 
   void read_event(const rosbag::MessageInstance& m) {
-    if (other_version<StoneEvent>(m)) return note_other_version<StoneEvent>(m, "~events");
-    const std::optional<StoneEvent> msg = decode<StoneEvent>(m, bytes_);
+    std::optional<StoneEvent> msg;
+    if (m.getDataType() == kEventType && m.getMD5Sum() == kEventMd5BeforeNames) {
+      msg = decode_event_before_names(bytes_);
+    } else if (other_version<StoneEvent>(m)) {
+      return note_other_version<StoneEvent>(m, "~events");
+    } else {
+      msg = decode<StoneEvent>(m, bytes_);
+    }
     if (!msg) return;
     SegmentEvent e;
+    try {
+      e.reason = parse_event_reason(msg->reason);
+    } catch (const InvalidArgument& error) {
+      // A reason this bag_report does not know has no rule to check its segment by.
+      if (++unknown_reasons_ <= kCorruptNamed) {
+        out_.problems.push_back("~events message " + std::to_string(out_.message_count) + " at " +
+                                stamp_text(to_ns(msg->header.stamp)) +
+                                " s was skipped: " + error.what());
+      }
+      return;
+    }
     e.stamp_ns = to_ns(msg->header.stamp);
     e.time_offset_s = msg->time_offset;
     e.segment = msg->segment;
-    e.reason = msg->reason;
     e.detail = msg->detail;
-    tf2::fromMsg(msg->pose.position, e.position_world);
-    tf2::fromMsg(msg->pose.orientation, e.orientation);
-    tf2::fromMsg(msg->twist.linear, e.velocity_world);
-    tf2::fromMsg(msg->angular_momentum, e.angular_momentum_world);
+    e.stone = msg->stone;
+    e.other_stone = msg->other_stone;
+    tf2::fromMsg(msg->pose.position, e.state.position_world);
+    tf2::fromMsg(msg->pose.orientation, e.state.orientation);
+    tf2::fromMsg(msg->twist.linear, e.state.velocity_world);
+    tf2::fromMsg(msg->angular_momentum, e.state.angular_momentum_world);
     out_.events.push_back(e);
   }
 
@@ -314,6 +355,7 @@ class Reader {
   std::size_t bad_index_skipped_ = 0;
   std::vector<std::uint8_t> bytes_;  // the current message, serialized
   std::size_t corrupt_ = 0;
+  std::size_t unknown_reasons_ = 0;  // ~events messages skipped for their reason
   std::string info_topic_, pose_topic_;
   std::map<std::string, std::string> types_, definitions_;
   std::set<std::string> latched_;

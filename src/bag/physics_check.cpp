@@ -78,10 +78,12 @@ std::string segment_kind_name(SegmentKind kind) {
 }
 
 SegmentKind segment_kind(const std::vector<SegmentEvent>& events, std::size_t index) {
-  const std::string& reason = events[index].reason;
-  if (reason == "slide" || reason == "roll" || reason == "rim") return SegmentKind::contact;
-  if (reason == "rest") return SegmentKind::rest;
-  if (reason == "impact" && index + 1 < events.size() &&
+  const EventReason reason = events[index].reason;
+  if (reason == EventReason::slide || reason == EventReason::roll || reason == EventReason::rim) {
+    return SegmentKind::contact;
+  }
+  if (reason == EventReason::rest) return SegmentKind::rest;
+  if (reason == EventReason::impact && index + 1 < events.size() &&
       events[index + 1].stamp_ns == events[index].stamp_ns &&
       events[index + 1].time_offset_s == events[index].time_offset_s) {
     return SegmentKind::contact;
@@ -95,7 +97,7 @@ std::vector<SegmentPlan> plan_segments(const std::vector<OdomSample>& odom,
   std::size_t next_event = 0;
   auto start_at_event = [&](std::size_t sample_index) {
     SegmentPlan p;
-    p.reason = events[next_event].reason;
+    p.reason = event_reason_name(events[next_event].reason);
     p.detail = events[next_event].detail;
     p.from_event = true;
     p.event_index = next_event;
@@ -143,10 +145,11 @@ const char* non_finite_field(const OdomSample& sample) {
 }
 
 const char* non_finite_field(const SegmentEvent& event) {
-  if (!event.position_world.allFinite()) return "position";
-  if (!event.orientation.coeffs().allFinite()) return "orientation";
-  if (!event.velocity_world.allFinite()) return "linear velocity";
-  if (!event.angular_momentum_world.allFinite()) return "angular momentum";
+  const RigidBodyState& s = event.state;
+  if (!s.position_world.allFinite()) return "position";
+  if (!s.orientation.coeffs().allFinite()) return "orientation";
+  if (!s.velocity_world.allFinite()) return "linear velocity";
+  if (!s.angular_momentum_world.allFinite()) return "angular momentum";
   if (!std::isfinite(event.time_offset_s)) return "time offset";
   return nullptr;
 }
@@ -167,14 +170,11 @@ RigidBodyState state_from_odom(const MotionModel& model, const OdomSample& sampl
 }
 
 RigidBodyState state_from_event(const SegmentEvent& event) {
-  require_finite("event position", event.position_world);
-  require_finite("event linear velocity", event.velocity_world);
-  require_finite("event angular momentum", event.angular_momentum_world);
-  RigidBodyState s;
-  s.position_world = event.position_world;
-  s.orientation = require_unit_quaternion("event orientation", event.orientation);
-  s.velocity_world = event.velocity_world;
-  s.angular_momentum_world = event.angular_momentum_world;
+  require_finite("event position", event.state.position_world);
+  require_finite("event linear velocity", event.state.velocity_world);
+  require_finite("event angular momentum", event.state.angular_momentum_world);
+  RigidBodyState s = event.state;
+  s.orientation = require_unit_quaternion("event orientation", event.state.orientation);
   return s;
 }
 
@@ -266,7 +266,9 @@ PhysicsResult check_physics(const RecordingInfo& info, const std::vector<OdomSam
             on_table ? info.table_rolling_resistance_m : info.board_rolling_resistance_m;
         const double l_s =
             on_table ? info.table_spinning_friction_m : info.board_spinning_friction_m;
-        seg.jellett_conserved = seg.plan.reason != "rim" && seg.plan.reason != "impact" &&
+        // Contact segments start at an event (plan_segments).
+        const EventReason reason = events[seg.plan.event_index].reason;
+        seg.jellett_conserved = reason != EventReason::rim && reason != EventReason::impact &&
                                 !is_fallback_detail(detail) &&
                                 std::abs(ct) >= lens.cos_cap_cone() && l_r == 0.0 && l_s == 0.0;
       }

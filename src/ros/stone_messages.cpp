@@ -125,9 +125,30 @@ StoneEvent to_event_msg(const SegmentEvent& event, const std::string& world_fram
   msg.segment = event.segment;
   msg.reason = event_reason_name(event.reason);
   msg.detail = event.detail;
+  msg.stone = event.stone;
+  msg.other_stone = event.other_stone;
   msg.pose = to_pose_msg(event.output);
   msg.twist = to_world_twist_msg(event.output);
   msg.angular_momentum = to_vector_msg(event.output.angular_momentum_world);
+  return msg;
+}
+
+StoneStates to_stone_states_msg(const std::vector<StoneStateEntry>& stones, const ros::Time& stamp,
+                                const std::string& world_frame) {
+  StoneStates msg;
+  msg.header.stamp = stamp;
+  msg.header.frame_id = world_frame;
+  for (const StoneStateEntry& s : stones) {
+    msg.name.push_back(s.name);
+    msg.color.push_back(s.color);
+    msg.point.push_back(s.point);
+    msg.width.push_back(s.width_m);
+    msg.height.push_back(s.height_m);
+    msg.mass.push_back(s.mass_kg);
+    msg.pose.push_back(to_pose_msg(s.output));
+    msg.twist.push_back(to_world_twist_msg(s.output));
+    msg.resting.push_back(s.resting);
+  }
   return msg;
 }
 

@@ -12,6 +12,7 @@
 #include "virtual_go/common/sim_time.h"
 #include "virtual_go/ros/board_markers.h"
 #include "virtual_go/ros/param_reader.h"
+#include "virtual_go/ros/stone_markers.h"
 #include "virtual_go/ros/stone_messages.h"
 #include "virtual_go/sim/mesh_file.h"
 
@@ -120,6 +121,10 @@ StoneNode::StoneNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_n
   // Every accepted request is its own event, and a burst of 100 calls lands within a few
   // ticks: a queue of 10 dropped 355 of 1,567 events in the service fuzz (scripts/service_fuzz.py).
   events_pub_ = private_nh_.advertise<StoneEvent>("events", 1000, true);
+  // Every stone's state as gazebo's model_states: latched, so a late subscriber gets the last
+  // change (every stone at rest after a rest event); while a stone moves, every tick that has
+  // a subscriber (stone_states_due).
+  stones_pub_ = private_nh_.advertise<StoneStates>("stones", 10, true);
   // rviz drops a marker for good when it gets it before the first transform of the marker's
   // frame: tf2's message filter holds it, and once the frame appears tf2 fails every pending
   // request stamped more than its cache time (10 s) before the frame's latest data, which a
@@ -132,6 +137,10 @@ StoneNode::StoneNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_n
   // every tick, duplicating /tf) and a robot model (rviz reads robot_description once, so it
   // depends on start order too). The first one goes out right after the first transform.
   marker_ = make_marker(sim_);
+  // One stone, one colour today: its marker is the prototype of that colour.
+  stone_prototypes_[c.color] = marker_;
+  stone_markers_pub_ =
+      private_nh_.advertise<visualization_msgs::MarkerArray>("stone_markers", 1, true);
   // The board is drawn in the fixed frame: it needs no transform, but rviz's tf filter still
   // holds it until the frame exists and can drop it as above, so it goes out with the marker.
   if (const std::optional<WorldConfig>& world = sim_.world_config()) {
@@ -263,8 +272,13 @@ void StoneNode::publish_result(const UpdateResult& result) {
     publish_events(result);
     // Only a state that advanced is published: each stamp appears once (no TF_REPEATED_DATA).
     if (result.advanced) publish_state(result.stamp_ns);
+    if (stone_states_due(result, sim_.resting(), stones_pub_.getNumSubscribers() > 0)) {
+      stones_pub_.publish(to_stone_states_msg(stone_states(sim_), to_ros_time(result.stamp_ns),
+                                              sim_.config().world_frame));
+    }
     if (result.advanced && !marker_sent_) {
       marker_pub_.publish(marker_);
+      publish_stone_markers();
       if (board_markers_pub_) board_markers_pub_.publish(board_markers_);
       marker_sent_ = true;
     }
@@ -280,8 +294,22 @@ void StoneNode::fill_diagnostics(diagnostic_updater::DiagnosticStatusWrapper& st
   for (const auto& [key, value] : report.values) status.add(key, value);
 }
 
+void StoneNode::publish_stone_markers() {
+  std::vector<StoneMarker> stones;
+  geometry_msgs::Pose identity;
+  identity.orientation.w = 1.0;
+  // Each stone in its own frame (its name), moved by /tf.
+  for (const StoneStateEntry& s : stone_states(sim_)) {
+    stones.push_back({s.name, s.color, s.name, identity});
+  }
+  stone_markers_pub_.publish(to_stone_markers_msg(stones, drawn_stones_, stone_prototypes_));
+  drawn_stones_.clear();
+  for (const StoneMarker& s : stones) drawn_stones_.push_back(s.name);
+}
+
 void StoneNode::on_marker_timer(const ros::WallTimerEvent&) {
   if (marker_sent_) marker_pub_.publish(marker_);
+  if (marker_sent_) publish_stone_markers();
   if (marker_sent_ && board_markers_pub_) board_markers_pub_.publish(board_markers_);
 }
 

@@ -87,6 +87,8 @@ Published (private names, ~ = the node's name, e.g. /stone):
   ~odom                nav_msgs/Odometry: pose in the world frame, twist in the stone frame
   ~marker              visualization_msgs/Marker (latched, every second): the lens as a
                        MESH_RESOURCE, an STL file in $ROS_HOME/virtual_go (~/.ros/virtual_go)
+  ~stone_markers       visualization_msgs/MarkerArray (latched, every second): every stone,
+                       namespace its name, in its own frame; DELETE for a stone gone
   ~board_markers       visualization_msgs/MarkerArray (latched, every second; with
                        ~board/enabled): the board, the table, the lines and the star points
   ~info                virtual_go/StoneInfo (latched): stone, model, integrator, dt, initial
@@ -95,7 +97,11 @@ Published (private names, ~ = the node's name, e.g. /stone):
                        reason: )"
       << reason_lines() << R"(
                        (with ~board/enabled every change of contact regime); its exact
-                       instant = header.stamp (rounded down to a ns) + time_offset
+                       instant = header.stamp (rounded down to a ns) + time_offset;
+                       stone (and other_stone of a stone-stone contact): the names
+  ~stones              virtual_go/StoneStates (latched; at each event, and every tick while a
+                       stone moves and someone listens): every stone's name, color, Go
+                       point, size, mass, world pose and twist, resting
   /diagnostics         diagnostic_msgs/DiagnosticArray (every ~diagnostic_period, 1 s):
                        stones awake/resting, events per s, step cost, real-time factor,
                        pending requests, steps deferred, behind, paused, steps queued; WARN

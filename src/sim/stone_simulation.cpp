@@ -84,9 +84,16 @@ SegmentEvent StoneSimulation::segment_event(const WorldEvent& event) const {
   split_world_time(event.time_s, out.stamp_ns, out.time_offset_s);
   out.reason = event_reason(event.kind);
   out.detail = world_event_detail_name(event.detail);
+  out.stone = stone_name(event.stone);
   out.state = event.state;
   out.output = state_output(checked_.setup.model, event.state);  // throws if not finite
   return out;
+}
+
+const std::string& StoneSimulation::stone_name(std::size_t index) const {
+  // One stone today, named by its frame (~stone_frame, "stone" by default).
+  if (index != 0) throw std::logic_error("stone index " + std::to_string(index) + " of 1 stone");
+  return checked_.config.stone_frame;
 }
 
 void StoneSimulation::commit_events(std::vector<SegmentEvent>& events, UpdateResult& result) {
@@ -196,6 +203,7 @@ void StoneSimulation::announce(EventReason reason, std::int64_t stamp_ns,
   event.stamp_ns = stamp_ns;
   event.segment = segment_;
   event.reason = reason;
+  event.stone = stone_name(0);
   event.state = state;
   event.output = output;
   if (reason == EventReason::held) event.detail = failure_;
@@ -493,6 +501,7 @@ bool StoneSimulation::step_world(UpdateResult& result, UpdateBudget& budget) {
       SegmentEvent command;
       command.stamp_ns = next_ns;
       command.reason = a.reason;
+      command.stone = stone_name(0);
       command.state = a.state;
       command.output = state_output(model, a.state);
       commands.push_back(std::move(command));

@@ -48,10 +48,10 @@ vb::OdomSample odom_at(std::int64_t stamp_ns, double t) {
   return o;
 }
 
-vb::SegmentEvent event_at(std::int64_t stamp_ns, const std::string& reason) {
-  vb::SegmentEvent e;
+virtual_go::SegmentEvent event_at(std::int64_t stamp_ns, const std::string& reason) {
+  virtual_go::SegmentEvent e;
   e.stamp_ns = stamp_ns;
-  e.reason = reason;
+  e.reason = virtual_go::parse_event_reason(reason);
   return e;
 }
 
@@ -205,8 +205,8 @@ TEST(CheckPhysics, NonFiniteValuesAreCountedNotFatal) {
   EXPECT_TRUE(counted) << "a NaN sample must fail --strict";
 
   // A non-finite event cannot start a prediction; it is counted too.
-  vb::SegmentEvent bad = event_at(0, "start");
-  bad.angular_momentum_world.z() = NAN;
+  virtual_go::SegmentEvent bad = event_at(0, "start");
+  bad.state.angular_momentum_world.z() = NAN;
   const vb::PhysicsResult e = vb::check_physics(info(), {odom_at(0, 0.0)}, {bad});
   EXPECT_EQ(e.non_finite_events.count, 1u);
   ASSERT_EQ(e.segments.size(), 1u);
@@ -312,8 +312,8 @@ TEST(Thresholds, NanFigureFails) {
 TEST(PlanSegments, SubNanosecondOffsetKeepsASampleAtTheStampBeforeTheEvent) {
   std::vector<vb::OdomSample> odom;
   for (int i = 0; i < 4; ++i) odom.push_back(odom_at(1000 * kMs + i * 20 * kMs, i * 0.02));
-  std::vector<vb::SegmentEvent> events = {event_at(1000 * kMs, "start"),
-                                          event_at(1020 * kMs, "impact")};
+  std::vector<virtual_go::SegmentEvent> events = {event_at(1000 * kMs, "start"),
+                                                  event_at(1020 * kMs, "impact")};
   events[1].time_offset_s = 0.4e-9;
   const std::vector<vb::SegmentPlan> plans = vb::plan_segments(odom, events);
   ASSERT_EQ(plans.size(), 2u);
@@ -325,7 +325,7 @@ TEST(PlanSegments, SubNanosecondOffsetKeepsASampleAtTheStampBeforeTheEvent) {
 }
 
 TEST(SegmentKind, ByReasonAndAnImpactFollowedAtTheSameInstant) {
-  std::vector<vb::SegmentEvent> events = {
+  std::vector<virtual_go::SegmentEvent> events = {
       event_at(1, "start"), event_at(2, "impact"), event_at(3, "impact"),
       event_at(3, "slide"), event_at(4, "roll"),   event_at(5, "rim"),
       event_at(6, "rest"),  event_at(7, "wake"),   event_at(8, "impact")};
@@ -335,7 +335,8 @@ TEST(SegmentKind, ByReasonAndAnImpactFollowedAtTheSameInstant) {
       vb::SegmentKind::contact, vb::SegmentKind::contact, vb::SegmentKind::contact,
       vb::SegmentKind::rest,    vb::SegmentKind::flight,  vb::SegmentKind::flight};
   for (std::size_t i = 0; i < events.size(); ++i) {
-    EXPECT_EQ(vb::segment_kind(events, i), expected[i]) << i << " " << events[i].reason;
+    EXPECT_EQ(vb::segment_kind(events, i), expected[i])
+        << i << " " << virtual_go::event_reason_name(events[i].reason);
   }
   // The same stamp but another offset is another instant: that impact flies.
   events[3].time_offset_s = 0.5e-9;

@@ -113,6 +113,32 @@ TEST(BagReportCli, ResetEventRestartsThePrediction) {
   EXPECT_NE(hidden.out.find("FAIL  orientation error"), std::string::npos) << hidden.out;
 }
 
+// A bag of the StoneEvent version before stone names (no stone field): read as this version
+// with empty names (the single stone), so its reset still starts the second segment.
+TEST(BagReportCli, EventsRecordedBeforeStoneNamesAreRead) {
+  SyntheticRun run;
+  run.reset_after = 1.0;
+  run.events_before_stone_names = true;
+  const Result r = run_report(bag("events_before_names", run) + " --strict");
+  EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("2 segments"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("another message version"), std::string::npos) << r.out;
+}
+
+// A reason outside the name table has no rule to check its segment by: the event is skipped
+// with a line naming the reason and the known ones, and the jump it hid fails --strict.
+TEST(BagReportCli, UnknownEventReasonIsNamedAndSkipped) {
+  SyntheticRun run;
+  run.reset_after = 1.0;
+  run.reset_reason = "teleport";
+  const Result r = run_report(bag("unknown_reason", run) + " --strict");
+  EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
+  EXPECT_NE((r.out + r.err).find("unknown event reason 'teleport' (known: start reset auto_reset"),
+            std::string::npos)
+      << r.out << r.err;
+  EXPECT_NE(r.out.find("FAIL  orientation error"), std::string::npos) << r.out;
+}
+
 TEST(BagReportCli, WithoutEventsOneSegmentFromTheFirstOdom) {
   SyntheticRun run;
   run.with_events = false;

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """rviz smoke test: rviz with config/stone.rviz, on a private Xvfb display with Mesa's software
-renderer, draws the stone node's marker and the board (~board/enabled is set by the .test file)
-whatever the start order:
+renderer, draws the stone node's stones (~stone_markers) and the board (~board/enabled is set by
+the .test file) whatever the start order:
 
 - rviz first, then the node;
 - the node first, rviz 12 s later (longer than tf's 10 s cache, so nothing from the node's
@@ -41,8 +41,9 @@ VIEW = (365, 62, 1065, 690)  # x0, y0, x1, y1
 DARK = 30  # the black stone renders near (12, 12, 14); grid crossings reach (47, 36, 23)
 # Names in the Displays tree (right of the icons, left of the check boxes), below the header.
 DISPLAY_NAMES = (44, 85, 170, 400)  # x0, y0, x1, y1
-NODE_TOPICS = ["/tf", "/tf_static", "/stone/pose", "/stone/odom", "/stone/marker", "/stone/info",
-               "/stone/events", "/stone/board_markers"]
+NODE_TOPICS = ["/tf", "/tf_static", "/stone/pose", "/stone/odom", "/stone/marker",
+               "/stone/stone_markers", "/stone/stones", "/stone/info", "/stone/events",
+               "/stone/board_markers"]
 # Of the 3D view, at least this share must be lit wood: the camera looks down at the board's
 # centre from 35 cm, so the board fills most of the view.
 BOARD_SHARE = 0.3
@@ -191,7 +192,7 @@ class RvizSmokeTest(unittest.TestCase):
         config = os.path.join(rospkg.RosPack().get_path(PKG), "config", "stone.rviz")
         self.start("rviz", ["rviz", "-d", config, "__name:=rviz_smoke"])
         # Up when its Stone and Board displays have subscribed to their markers.
-        for topic in ("/stone/marker", "/stone/board_markers"):
+        for topic in ("/stone/stone_markers", "/stone/board_markers"):
             self.wait_for(lambda: "/rviz_smoke" in self.subscribers(topic), 60,
                           "rviz did not subscribe to %s" % topic)
 

@@ -343,6 +343,41 @@ TEST(StoneSimulationBoard, StoneEventMessageListsEveryReason) {
   EXPECT_EQ(names, vg::event_reason_names());
 }
 
+// Every event names its stone by its frame (the single stone today), contact events and
+// commands alike, and no stone-stone contact exists to name another.
+TEST(StoneSimulationBoard, EveryEventNamesItsStone) {
+  vg::StoneConfig c = flat_drop();
+  c.stone_frame = "black_stone";
+  vg::StoneSimulation sim(c);
+  Recording rec;
+  run(sim, kStart, kStart + 400 * kMs, 16 * kMs, rec);
+  sim.set_angular_velocity(Eigen::Vector3d(0, 0, 5), "world");
+  run(sim, kStart + 416 * kMs, kStart + 500 * kMs, 16 * kMs, rec);
+  ASSERT_FALSE(of_reason(rec.events, vg::EventReason::impact).empty());
+  ASSERT_FALSE(of_reason(rec.events, vg::EventReason::set_angular_velocity).empty());
+  for (const vg::SegmentEvent& e : rec.events) {
+    EXPECT_EQ(e.stone, "black_stone") << vg::event_reason_name(e.reason);
+    EXPECT_EQ(e.other_stone, "") << vg::event_reason_name(e.reason);
+  }
+}
+
+// The names read back through the one table: each name its reason, anything else refused
+// naming the known ones.
+TEST(StoneSimulationBoard, EventReasonNamesReadBack) {
+  for (const std::string& name : vg::event_reason_names()) {
+    EXPECT_EQ(vg::event_reason_name(vg::parse_event_reason(name)), name);
+  }
+  try {
+    vg::parse_event_reason("Impact");
+    ADD_FAILURE() << "a reason in the wrong case was read";
+  } catch (const vg::InvalidArgument& e) {
+    EXPECT_EQ(e.field(), "reason");
+    EXPECT_NE(std::string(e.what()).find("unknown event reason 'Impact' (known: start reset"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 // Nothing the World throws leaves update(): a start state it refuses (overlapping the board,
 // which check_config would refuse) holds the simulation with the cause, and a set_state then
 // replaces the state and the drop goes on.

@@ -2,14 +2,17 @@
 
 #include <geometry_msgs/PoseStamped.h>
 #include <nav_msgs/Odometry.h>
+#include <ros/serialization.h>
 #include <rosbag/bag.h>
 #include <tf2_msgs/TFMessage.h>
+#include <topic_tools/shape_shifter.h>
 #include <virtual_go/StoneEvent.h>
 #include <virtual_go/StoneInfo.h>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <sstream>
 
 #include "support/bag_messages.h"
 
@@ -22,6 +25,27 @@ const Eigen::Vector3d kV0(0.3, 0.1, 2.0);
 // Tilted 30 degrees about x; spin mostly about the symmetry axis with a wobble.
 const Eigen::Quaterniond kQ0(Eigen::AngleAxisd(M_PI / 6, Eigen::Vector3d::UnitX()));
 const Eigen::Vector3d kOmegaBody0(4.0, -3.0, 25.0);
+
+// The StoneEvent before it named its stone: the fields of today's message but the two names at
+// its end, as an old stone_node recorded it.
+topic_tools::ShapeShifter event_before_stone_names(const virtual_go::StoneEvent& event) {
+  std::vector<std::uint8_t> bytes(ros::serialization::serializationLength(event));
+  ros::serialization::OStream out(bytes.data(), static_cast<std::uint32_t>(bytes.size()));
+  ros::serialization::serialize(out, event);
+  bytes.resize(bytes.size() - 8);  // two empty strings: their lengths of 0
+  std::istringstream in(ros::message_traits::definition<virtual_go::StoneEvent>());
+  std::string definition, line;
+  while (std::getline(in, line)) {
+    if (line.rfind("string stone", 0) != 0 && line.rfind("string other_stone", 0) != 0) {
+      definition += line + "\n";
+    }
+  }
+  topic_tools::ShapeShifter shifter;
+  shifter.morph("297586e22de15a89da82e4c718f1324f", "virtual_go/StoneEvent", definition, "1");
+  ros::serialization::IStream read(bytes.data(), static_cast<std::uint32_t>(bytes.size()));
+  shifter.read(read);
+  return shifter;
+}
 
 }  // namespace
 
@@ -85,6 +109,15 @@ std::size_t write_run_bag(const std::string& path, const SyntheticRun& run) {
     }
     e.twist.angular = vec_msg(s0.orientation * s0.angular_velocity_body);
     e.angular_momentum = vec_msg(s0.angular_momentum_world);
+    if (run.events_before_stone_names) {
+      const topic_tools::ShapeShifter old = event_before_stone_names(e);
+      auto header = latched_header<virtual_go::StoneEvent>();
+      (*header)["md5sum"] = old.getMD5Sum();
+      (*header)["message_definition"] = old.getMessageDefinition();
+      bag.write("/stone/events", stamp(ns), old, header);
+      return;
+    }
+    e.stone = "stone";
     bag.write("/stone/events", stamp(ns), e, latched_header<virtual_go::StoneEvent>());
   };
   if (run.with_events) write_event(run.start_ns, 0, "start");
@@ -108,7 +141,7 @@ std::size_t write_run_bag(const std::string& path, const SyntheticRun& run) {
     if (reset_ns > 0 && since_start >= reset_ns) {
       segment_start = reset_ns;
       if (!reset_written && run.with_events && !run.reset_without_event) {
-        write_event(run.start_ns + reset_ns, overflow_written ? 2 : 1, "reset");
+        write_event(run.start_ns + reset_ns, overflow_written ? 2 : 1, run.reset_reason);
       }
       reset_written = true;
     }

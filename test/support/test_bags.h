@@ -28,6 +28,10 @@ struct SyntheticRun {
   // written unless reset_without_event.
   double reset_after = 0.0;
   bool reset_without_event = false;
+  std::string reset_reason = "reset";  // the reset event's reason (another: an unknown reason)
+  // ~events as the StoneEvent version before stone names (md5sum 297586e2...): the same bytes
+  // without the two empty names at the end.
+  bool events_before_stone_names = false;
   // A set_state event this long after the start (0 = none) whose state is so large that its
   // closed form overflows within 0.2 s (position and velocity x 1.5e308). The recorded motion
   // goes on as before; with reset_after the reset starts a good segment again.

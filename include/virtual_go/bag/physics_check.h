@@ -27,7 +27,9 @@ std::string segment_kind_name(SegmentKind kind);  // "flight", "contact", "rest"
 
 // Which odom samples belong to one segment and where its prediction starts.
 struct SegmentPlan {
-  std::string reason;           // the event's reason, or "first odom" without an event
+  // For reports: the event's reason's name, or "first odom" / "stamps went backwards (no
+  // event)" without an event. Checks go by the event's EventReason.
+  std::string reason;
   std::string detail;           // the event's detail (contact events), else empty
   bool from_event = false;      // true: starts at events[event_index], else at odom[first]
   std::size_t event_index = 0;  // valid when from_event

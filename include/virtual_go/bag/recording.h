@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "virtual_go/sim/segment_event.h"
+
 namespace virtual_go {
 namespace bag {
 
@@ -57,20 +59,6 @@ struct OdomSample {
   Eigen::Vector3d angular_velocity_body = Eigen::Vector3d::Zero();
 };
 
-// One virtual_go/StoneEvent: the first state of a segment, world frame. The exact instant is
-// stamp_ns + time_offset_s (the stamp is rounded down to a whole ns).
-struct SegmentEvent {
-  std::int64_t stamp_ns = 0;
-  double time_offset_s = 0.0;  // [0, 1e-9)
-  std::uint32_t segment = 0;
-  std::string reason;
-  std::string detail;  // contact events: the finer cause
-  Eigen::Vector3d position_world = Eigen::Vector3d::Zero();
-  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
-  Eigen::Vector3d velocity_world = Eigen::Vector3d::Zero();
-  Eigen::Vector3d angular_momentum_world = Eigen::Vector3d::Zero();
-};
-
 struct Recording {
   std::string path;
   std::size_t message_count = 0;
@@ -80,6 +68,10 @@ struct Recording {
   std::string odom_topic;    // empty when none was found
   std::string events_topic;  // empty when none was found
   std::vector<OdomSample> odom;
+  // One virtual_go/StoneEvent each, in bag order, read into the simulation's own event type
+  // (sim/segment_event.h): the reason through its name table (a message with an unknown reason
+  // is skipped and named in problems), state as the message carried it (world frame, the
+  // quaternion not normalised, nothing checked), output left default.
   std::vector<SegmentEvent> events;
   // What could not be read or found, one line each (a partial report says these).
   std::vector<std::string> problems;

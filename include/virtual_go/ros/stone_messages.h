@@ -13,10 +13,12 @@
 
 #include "virtual_go/StoneEvent.h"
 #include "virtual_go/StoneInfo.h"
+#include "virtual_go/StoneStates.h"
 #include "virtual_go/body/rigid_body.h"
 #include "virtual_go/geometry/tessellation.h"
 #include "virtual_go/sim/segment_event.h"
 #include "virtual_go/sim/stone_simulation.h"
+#include "virtual_go/sim/stone_states.h"
 
 namespace virtual_go {
 
@@ -40,6 +42,9 @@ nav_msgs::Odometry to_odometry_msg(const StateOutput& output, const ros::Time& s
 
 StoneInfo to_info_msg(const StoneSimulation& sim);
 StoneEvent to_event_msg(const SegmentEvent& event, const std::string& world_frame);
+// ~stones: the entries (sim/stone_states.h) copied into parallel arrays, entry i at index i.
+StoneStates to_stone_states_msg(const std::vector<StoneStateEntry>& stones, const ros::Time& stamp,
+                                const std::string& world_frame);
 // The lens as rviz draws it (body frame), for both marker forms below.
 TriangleMesh stone_display_mesh(const Stone& stone);
 // The tessellated lens as a TRIANGLE_LIST in the stone frame, locked to it so rviz moves it

@@ -12,8 +12,10 @@
 #include <visualization_msgs/MarkerArray.h>
 
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "virtual_go/SetAngularVelocity.h"
 #include "virtual_go/SetState.h"
@@ -59,6 +61,7 @@ class StoneNode {
   ros::Publisher marker_pub_;
   ros::Publisher info_pub_;
   ros::Publisher events_pub_;
+  ros::Publisher stones_pub_;  // ~stones, latched (sim/stone_states.h says when)
   ros::ServiceServer set_angular_velocity_srv_;
   ros::ServiceServer reset_srv_;
   ros::ServiceServer set_state_srv_;
@@ -75,6 +78,12 @@ class StoneNode {
   visualization_msgs::Marker marker_;
   bool marker_sent_ = false;
   ros::WallTimer marker_timer_;
+  // Every stone as one MarkerArray (~stone_markers, latched; ros/stone_markers.h), sent and
+  // republished with ~marker for the same reason. The prototypes: a marker per stone colour.
+  ros::Publisher stone_markers_pub_;
+  std::map<std::string, visualization_msgs::Marker> stone_prototypes_;
+  std::vector<std::string> drawn_stones_;  // names in the last array: deleted when gone
+  void publish_stone_markers();
   // With ~board/enabled: the board's markers (~board_markers, latched, world frame), sent and
   // republished with the stone's marker, for the same reason.
   ros::Publisher board_markers_pub_;

@@ -1,5 +1,11 @@
 // A discontinuity in the simulated motion: the first state of a new segment. Tools that
 // predict the motion from a recording restart their prediction at each one.
+//
+// The one event type outside the core: the simulation makes it from the World's events
+// (world/world_event.h) and its own commands, the node copies it into virtual_go/StoneEvent
+// (ros/stone_messages.h), and bag_report reads the message back into it (bag/bag_reader.h). Each
+// boundary has one mapping; reasons cross every boundary as the names of one table
+// (event_reason_names) and come back through parse_event_reason.
 #pragma once
 
 #include <cstdint>
@@ -34,6 +40,9 @@ enum class EventReason {
 std::string event_reason_name(EventReason reason);
 // All reasons' names, in the order of the enum.
 std::vector<std::string> event_reason_names();
+// The reason of a name from event_reason_names(); anything else throws InvalidArgument (field
+// "reason") "unknown event reason '<name>' (known: start reset ...)".
+EventReason parse_event_reason(const std::string& name);
 
 struct SegmentEvent {
   // The segment's first instant is stamp_ns + time_offset_s: the stamp is the instant rounded
@@ -43,9 +52,16 @@ struct SegmentEvent {
   double time_offset_s = 0.0;
   std::uint32_t segment = 0;  // 0 at start, +1 per event
   EventReason reason = EventReason::start;
-  std::string detail;    // contact events: the World's finer cause (e.g. "slip_stop"); held: why
+  std::string detail;  // contact events: the World's finer cause (e.g. "slip_stop"); held: why
+  // The stone's name (also its tf frame) and, for a stone-stone contact, the other stone's;
+  // else empty. Read from a bag recorded before stones had names, stone is empty: the single
+  // stone of ~info.
+  std::string stone;
+  std::string other_stone;
   RigidBodyState state;  // the segment's first state
-  StateOutput output;    // what a message shows of it (checked finite)
+  // What a message shows of it (checked finite). Made by the simulation only: read back from a
+  // bag, state holds what the message carried, unchecked, and output stays default.
+  StateOutput output;
 };
 
 }  // namespace virtual_go

@@ -140,6 +140,9 @@ class StoneSimulation {
   // Simulated time (ns) of the World's time 0.
   std::int64_t epoch_ns() const { return epoch_ns_; }
   std::size_t pending_requests() const { return pending_.size(); }
+  // The name of the World's stone `index` (events and ~stones carry it), also its tf frame:
+  // today the single stone, index 0, named by ~stone_frame.
+  const std::string& stone_name(std::size_t index) const;
 
  private:
   struct Change {
