@@ -23,8 +23,8 @@ constexpr double kApproachToleranceMps = 1e-12;
 constexpr double kCorrectionSlackM = 1e-15;
 // No handed-out state overlaps by more than this (m): gaps are exact to ~1e-17 m.
 constexpr double kGapToleranceM = 1e-12;
-constexpr int kMaxCorrections = 16;         // per member and sweep, board and table
-constexpr int kMaxProjectionSweeps = 100;   // then the touching members keep their poses
+constexpr int kMaxCorrections = 16;        // per member and sweep, board and table
+constexpr int kMaxProjectionSweeps = 100;  // then the touching members keep their poses
 // The plane model accepts |u_n| <= 1e-6 m/s; hand over only well inside that.
 constexpr double kPlaneNormalSpeedMps = 1e-7;
 // A pair correction along n does not move a stone whose board contact normal makes a cosine
@@ -148,8 +148,7 @@ double NonsmoothIsland::potential(const std::vector<RigidBodyState>& s,
   return e;
 }
 
-bool NonsmoothIsland::scale_kinetic_energy(std::vector<RigidBodyState>& s,
-                                           double energy_j) const {
+bool NonsmoothIsland::scale_kinetic_energy(std::vector<RigidBodyState>& s, double energy_j) const {
   // Velocity and angular momentum of all members scaled together: the kinetic energy is
   // quadratic in them, the potential energy and the poses do not change.
   const double p = potential(s, lattice_.active);
@@ -270,15 +269,14 @@ bool NonsmoothIsland::gather(const std::vector<RigidBodyState>& s, std::vector<M
       if (c.gap_m > options_.contact_margin_m) continue;
       ++mc[a].stones;
       ++mc[b].stones;
-      pairs.push_back(
-          PairContact{a, b, 0.5 * (c.point_a_world + c.point_b_world), c.normal_world});
+      pairs.push_back(PairContact{a, b, 0.5 * (c.point_a_world + c.point_b_world), c.normal_world});
     }
   }
   return clear;
 }
 
-NonsmoothIsland::Step NonsmoothIsland::sub_step(const std::vector<RigidBodyState>& from,
-                                                double h_s, double energy_cap_j, bool commit) {
+NonsmoothIsland::Step NonsmoothIsland::sub_step(const std::vector<RigidBodyState>& from, double h_s,
+                                                double energy_cap_j, bool commit) {
   const std::size_t n = from.size();
   Step out;
   out.states = from;
@@ -324,9 +322,8 @@ NonsmoothIsland::Step NonsmoothIsland::sub_step(const std::vector<RigidBodyState
     }
     for (const PairContact& p : pairs) {
       const MotionModel &ma = members_[p.a].setup.model, &mb = members_[p.b].setup.model;
-      const double u_n =
-          p.normal_world.dot(point_velocity_world(mb, s[p.b], p.point_world) -
-                             point_velocity_world(ma, s[p.a], p.point_world));
+      const double u_n = p.normal_world.dot(point_velocity_world(mb, s[p.b], p.point_world) -
+                                            point_velocity_world(ma, s[p.a], p.point_world));
       if (!(u_n < -kApproachToleranceMps)) continue;
       const PairImpact impact = resolve_pair_impact(ma, s[p.a], mb, s[p.b], p.point_world,
                                                     p.normal_world, stone_plastic_);
@@ -359,8 +356,8 @@ NonsmoothIsland::Step NonsmoothIsland::sub_step(const std::vector<RigidBodyState
     if (commit) ++counters_.holds;
     for (std::size_t i = 0; i < n; ++i) {
       if (!lattice_.active[i]) continue;
-      const bool free = out.contacts[i].board == 0 && out.contacts[i].stones == 0 &&
-                        !out.contacts[i].loaded;
+      const bool free =
+          out.contacts[i].board == 0 && out.contacts[i].stones == 0 && !out.contacts[i].loaded;
       if (free) continue;
       s[i] = from[i];
       s[i].velocity_world.setZero();
@@ -380,7 +377,8 @@ NonsmoothIsland::Step NonsmoothIsland::sub_step(const std::vector<RigidBodyState
   if (commit) {
     counters_.projection_sweeps += projection_sweeps;
     counters_.velocity_sweeps += velocity_sweeps;
-    counters_.most_projection_sweeps = std::max(counters_.most_projection_sweeps, projection_sweeps);
+    counters_.most_projection_sweeps =
+        std::max(counters_.most_projection_sweeps, projection_sweeps);
     counters_.most_velocity_sweeps = std::max(counters_.most_velocity_sweeps, velocity_sweeps);
     const double excess = energy(s, lattice_.active) - energy_cap_j;
     if (excess > 0.0) {
@@ -468,16 +466,15 @@ NonsmoothIsland::Lattice NonsmoothIsland::next_lattice() {
       if (j == i || !next.active[j]) continue;
       const RigidBodyState& r = next.states[j];
       auto rim = [&](std::size_t k, const RigidBodyState& x) {
-        return members_[k].setup.model.angular_velocity_world(x.orientation,
-                                                              x.angular_momentum_world)
+        return members_[k]
+                   .setup.model.angular_velocity_world(x.orientation, x.angular_momentum_world)
                    .norm() *
                members_[k].board.lens().half_width();
       };
       const double ts = o.separation_time_s;
       const double reach = (s.velocity_world - r.velocity_world).norm() * ts +
                            (rim(i, s) + rim(j, r)) * ts +
-                           members_[i].setup.gravity_world.norm() * ts * ts +
-                           o.contact_margin_m;
+                           members_[i].setup.gravity_world.norm() * ts * ts + o.contact_margin_m;
       if (!apart_by_bounds(members_[i].board, s, members_[j].board, r, reach)) {
         const LensPairContact c = lens_pair_distance(members_[i].board.lens(), lens_pose(s),
                                                      members_[j].board.lens(), lens_pose(r));

@@ -60,7 +60,8 @@ double proven_pair_gap(const vg::RigidBodyState& a, const vg::RigidBodyState& b)
   const double d = la.sphere_offset();
   std::vector<Vector3d> candidates = {lb.x - la.x};
   for (double sa : {-1.0, 1.0}) {
-    for (double sb : {-1.0, 1.0}) candidates.push_back((lb.x + sb * d * lb.b) - (la.x + sa * d * la.b));
+    for (double sb : {-1.0, 1.0})
+      candidates.push_back((lb.x + sb * d * lb.b) - (la.x + sa * d * la.b));
   }
   Vector3d flat = lb.x - la.x;
   flat.z() = 0;
@@ -260,7 +261,8 @@ TEST(IslandContact, ARowStruckAtOneEndMovesOnAsOneBody) {
   for (const vg::IslandMemberEnd& e : ends) {
     const double t = left_at[e.member];
     const double v = std::max(0.0, V - mu * kG * (t - h));
-    const double moved = left_with[e.member].position_world.x() - start[e.member].position_world.x();
+    const double moved =
+        left_with[e.member].position_world.x() - start[e.member].position_world.x();
     EXPECT_TRUE(e.end == vg::NonsmoothEnd::plane || e.end == vg::NonsmoothEnd::rest) << e.member;
     (e.end == vg::NonsmoothEnd::plane ? planes : rests)++;
     EXPECT_NEAR(left_with[e.member].velocity_world.x(), v, 0.02 * V) << e.member;
@@ -299,8 +301,9 @@ TEST(IslandContact, AStoneDroppedOnARestingStoneNeverPassesThroughIt) {
   for (int trial = 0; trial < 6; ++trial) {
     const vg::RigidBodyState lower = flat(0.0, 0.0);
     const Quaterniond q(Eigen::AngleAxisd(0.4 * u(rng), Vector3d(u(rng), u(rng), 0).normalized()));
-    vg::RigidBodyState upper = at(Vector3d(0.006 * u(rng), 0.006 * u(rng), 0.02), q,
-                                  Vector3d(0.02 * u(rng), 0.02 * u(rng), -std::sqrt(2 * kG * 0.002)));
+    vg::RigidBodyState upper =
+        at(Vector3d(0.006 * u(rng), 0.006 * u(rng), 0.02), q,
+           Vector3d(0.02 * u(rng), 0.02 * u(rng), -std::sqrt(2 * kG * 0.002)));
     upper = with_omega(upper, 5 * Vector3d(u(rng), u(rng), u(rng)));
     for (int k = 0; k < 50; ++k) {  // lowered until 0.1 um above the lower stone
       const vg::LensPairContact c =

@@ -88,16 +88,16 @@ struct NonsmoothCounters {
   long impulses = 0;     // plastic impulses applied (board and pairs)
   long projections = 0;  // position corrections (board and pairs)
   long energy_guard_scalings = 0;
-  long separation_searches = 0;  // exact time-of-impact searches for the separated test
-  long pair_impulses = 0;        // of `impulses`, those between two members
-  long pair_projections = 0;     // of `projections`, those between two members
-  long pair_distances = 0;       // lens_pair_distance evaluations
-  long projection_sweeps = 0;    // Gauss-Seidel sweeps over the positions (committed steps)
-  long velocity_sweeps = 0;      // Gauss-Seidel sweeps over the velocities (committed steps)
+  long separation_searches = 0;    // exact time-of-impact searches for the separated test
+  long pair_impulses = 0;          // of `impulses`, those between two members
+  long pair_projections = 0;       // of `projections`, those between two members
+  long pair_distances = 0;         // lens_pair_distance evaluations
+  long projection_sweeps = 0;      // Gauss-Seidel sweeps over the positions (committed steps)
+  long velocity_sweeps = 0;        // Gauss-Seidel sweeps over the velocities (committed steps)
   int most_projection_sweeps = 0;  // in one committed sub-step
   int most_velocity_sweeps = 0;    // in one committed sub-step
   long holds = 0;  // sub-steps whose touching members kept their poses (lift not payable)
-  long projection_failures = 0;  // sub-steps whose overlaps the sweeps could not remove (held)
+  long projection_failures = 0;    // sub-steps whose overlaps the sweeps could not remove (held)
   double deepest_overlap_m = 0.0;  // deepest overlap a free sub-step produced (corrected), m
   double largest_energy_excess_j = 0.0;  // energy above the previous lattice state's left after
                                          // the guard (0 by construction; measured), J
@@ -148,9 +148,7 @@ class NonsmoothIsland {
   bool active(std::size_t member) const { return lattice_.active[member] != 0; }
   double start_time() const { return t0_; }
   double lattice_time() const { return lattice(steps_); }  // time of the last committed state
-  const RigidBodyState& lattice_state(std::size_t member) const {
-    return lattice_.states[member];
-  }
+  const RigidBodyState& lattice_state(std::size_t member) const { return lattice_.states[member]; }
   bool finished() const { return finished_.has_value(); }
   const NonsmoothCounters& counters() const { return counters_; }
   const NonsmoothContactOptions& options() const { return options_; }
@@ -205,8 +203,8 @@ class NonsmoothIsland {
   NonsmoothContactOptions options_;
   double t0_;
   long steps_ = 0;
-  Lattice lattice_;                 // at lattice(steps_)
-  std::optional<Lattice> ahead_;    // lattice(steps_ + 1), computed for a sample
+  Lattice lattice_;               // at lattice(steps_)
+  std::optional<Lattice> ahead_;  // lattice(steps_ + 1), computed for a sample
   double reached_;
   std::optional<IslandOutcome> finished_;
   NonsmoothCounters counters_;
