@@ -161,7 +161,16 @@ bool NonsmoothIsland::scale_kinetic_energy(std::vector<RigidBodyState>& s, doubl
     s[i].velocity_world *= scale;
     s[i].angular_momentum_world *= scale;
   }
-  return true;
+  // The scaled energy can come out a few ulps above the target: shrink a little more.
+  double shrink = 1e-15;
+  for (int k = 0; k < 40 && energy(s, lattice_.active) > energy_j; ++k, shrink *= 4.0) {
+    for (std::size_t i = 0; i < s.size(); ++i) {
+      if (!lattice_.active[i]) continue;
+      s[i].velocity_world *= 1.0 - shrink;
+      s[i].angular_momentum_world *= 1.0 - shrink;
+    }
+  }
+  return energy(s, lattice_.active) <= energy_j;
 }
 
 void NonsmoothIsland::project(std::vector<RigidBodyState>& s, std::vector<MemberContacts>& mc,
@@ -557,7 +566,17 @@ IslandOutcome NonsmoothIsland::advance(double t_end_s, long max_steps) {
   Step partial = sub_step(lattice_.states, since, lattice_.energy_j, false);
   IslandOutcome o;
   o.time_s = t_end_s;
-  const bool scaled = scale_kinetic_energy(partial.states, next_j);
+  bool scaled = scale_kinetic_energy(partial.states, next_j);
+  // Round-off can leave it ulps below next_j: grow it back as little as needed.
+  double grow = 1e-15;
+  for (int k = 0; scaled && k < 40 && energy(partial.states, lattice_.active) < next_j;
+       ++k, grow *= 4.0) {
+    for (std::size_t i = 0; i < partial.states.size(); ++i) {
+      if (!lattice_.active[i]) continue;
+      partial.states[i].velocity_world *= 1.0 + grow;
+      partial.states[i].angular_momentum_world *= 1.0 + grow;
+    }
+  }
   const double e = energy(partial.states, lattice_.active);
   if (scaled && e >= next_j && e <= lattice_.energy_j) {
     o.states = partial.states;
