@@ -30,6 +30,13 @@ constexpr double kPlaneNormalSpeedMps = 1e-7;
 // A pair correction along n does not move a stone whose board contact normal makes a cosine
 // above this with the direction it would be pushed into the board.
 constexpr double kBlockedCosine = 1e-6;
+// A pair impulse does not move a stone it would press into a board contact it lies on with a
+// cosine above this (mostly into the board: a stone under another, not one pushed along a row).
+constexpr double kPressedCosine = 0.5;
+// ... but only after this many plain sweeps: the first ones pass the impulse through the lower
+// stone to the board with its torque (an eccentric landing can tip it); holding the lower stone
+// from then on makes the rest converge at once instead of halving per sweep.
+constexpr int kPlainSweeps = 8;
 
 ContactMaterial plastic(ContactMaterial m) {
   m.restitution = 0.0;
@@ -334,10 +341,37 @@ NonsmoothIsland::Step NonsmoothIsland::sub_step(const std::vector<RigidBodyState
       const double u_n = p.normal_world.dot(point_velocity_world(mb, s[p.b], p.point_world) -
                                             point_velocity_world(ma, s[p.a], p.point_world));
       if (!(u_n < -kApproachToleranceMps)) continue;
-      const PairImpact impact = resolve_pair_impact(ma, s[p.a], mb, s[p.b], p.point_world,
-                                                    p.normal_world, stone_plastic_);
-      s[p.a] = impact.state_a;
-      s[p.b] = impact.state_b;
+      auto pressed = [&](std::size_t i, const Eigen::Vector3d& push) {
+        const MemberContacts& m = out.contacts[i];
+        for (int k = 0; k < m.board; ++k) {
+          if (push.dot(m.contact[k].lens.normal_world) < -kPressedCosine) return true;
+        }
+        return false;
+      };
+      const bool shock = velocity_sweeps >= kPlainSweeps;
+      const bool held_a = shock && pressed(p.a, -p.normal_world);
+      const bool held_b = shock && pressed(p.b, p.normal_world);
+      if (held_a != held_b) {
+        // The board holds the lower stone: the upper one meets it as a surface moving with the
+        // lower's contact point (the one-body impact in that frame: only K of the upper stone
+        // and the relative velocity enter), and the lower stone is not moved. The energy change
+        // is the relative one plus P . u_lower, ~0 for a supported stone; the guard covers it.
+        const std::size_t held = held_a ? p.a : p.b, moving = held_a ? p.b : p.a;
+        const Eigen::Vector3d n = held_a ? p.normal_world : Eigen::Vector3d(-p.normal_world);
+        RigidBodyState relative = s[moving];
+        relative.velocity_world -=
+            point_velocity_world(members_[held].setup.model, s[held], p.point_world);
+        const Impact impact =
+            resolve_impact(members_[moving].setup.model, relative, p.point_world, n, stone_plastic_,
+                           members_[moving].setup.gravity_world);
+        s[moving].velocity_world += impact.state.velocity_world - relative.velocity_world;
+        s[moving].angular_momentum_world = impact.state.angular_momentum_world;
+      } else {
+        const PairImpact impact = resolve_pair_impact(ma, s[p.a], mb, s[p.b], p.point_world,
+                                                      p.normal_world, stone_plastic_);
+        s[p.a] = impact.state_a;
+        s[p.b] = impact.state_b;
+      }
       acted = true;
       out.contacts[p.a].loaded = out.contacts[p.b].loaded = true;
       if (commit) {

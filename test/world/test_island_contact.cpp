@@ -297,8 +297,9 @@ TEST(IslandContact, AStoneDroppedOnARestingStoneNeverPassesThroughIt) {
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   const vg::LensGeometry lens(stone().shape);
   int on_top = 0, leaned = 0, slid_off = 0;
+  long steps = 0, pair_impulses = 0, most_sweeps = 0;
   Watch w;
-  for (int trial = 0; trial < 6; ++trial) {
+  for (int trial = 0; trial < 8; ++trial) {
     const vg::RigidBodyState lower = flat(0.0, 0.0);
     const Quaterniond q(Eigen::AngleAxisd(0.4 * u(rng), Vector3d(u(rng), u(rng), 0).normalized()));
     vg::RigidBodyState upper =
@@ -319,6 +320,9 @@ TEST(IslandContact, AStoneDroppedOnARestingStoneNeverPassesThroughIt) {
     w.worst_pair_gap = std::min(w.worst_pair_gap, trial_watch.worst_pair_gap);
     w.worst_rise = std::max(w.worst_rise, trial_watch.worst_rise);
     EXPECT_EQ(island.counters().largest_energy_excess_j, 0.0);
+    steps += island.counters().steps;
+    pair_impulses += island.counters().pair_impulses;
+    most_sweeps = std::max<long>(most_sweeps, island.counters().most_velocity_sweeps);
     // The upper stone ends on the lower one (its centre above the lower's top), leaning on it
     // (a rim on the board, its centre above the lower's), or beside it (its centre outside the
     // lower's rim): never inside or below it.
@@ -337,9 +341,11 @@ TEST(IslandContact, AStoneDroppedOnARestingStoneNeverPassesThroughIt) {
   EXPECT_GE(w.worst_board_gap, -kOverlapToleranceM);
   EXPECT_LE(w.worst_rise, kEnergyRoundOffJ);
   std::printf(
-      "[ drop    ] 6 tilted spinning drops on a resting stone: %d on top, %d leaning on it, %d "
-      "beside; worst gaps board %.1e m, pair %.1e m; worst energy rise %.1e J\n",
-      on_top, leaned, slid_off, w.worst_board_gap, w.worst_pair_gap, w.worst_rise);
+      "[ drop    ] 8 tilted spinning drops on a resting stone: %d on top, %d leaning on it, %d "
+      "beside; %ld sub-steps, %ld pair impulses, at most %ld velocity sweeps; worst gaps board "
+      "%.1e m, pair %.1e m; worst energy rise %.1e J\n",
+      on_top, leaned, slid_off, steps, pair_impulses, most_sweeps, w.worst_board_gap,
+      w.worst_pair_gap, w.worst_rise);
 }
 
 // Issue 19's leftover: a nearly still stone on an edge or against a side, sampled between lattice
