@@ -13,7 +13,9 @@
 //   3. velocities: a plastic impulse at every contact within the margin that still approaches
 //      (board: resolve_impact with e* = 0; pair: resolve_pair_impact with e* = 0, both with
 //      Coulomb friction integrated through the impulse, so each impulse can only remove energy),
-//      Gauss-Seidel until none approaches;
+//      Gauss-Seidel until none approaches (the board's contacts first; after 8 plain sweeps a
+//      stone that a pair impulse would press into the board is held and the other meets it as a
+//      moving surface, so a stack converges at once instead of halving per sweep);
 //   4. the energy guard over the island's total energy (body_energy of every member): above the
 //      previous lattice state's, (v, L) of all members are scaled by one factor (every velocity
 //      constraint is linear and homogeneous, so no contact starts to approach); when the
