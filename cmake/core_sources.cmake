@@ -52,6 +52,8 @@ set(VG_CORE_SOURCES
   src/world/world_event.cpp
   src/world/support_plane.cpp
   src/world/nonsmooth_contact.cpp
+  src/world/nonsmooth_island.cpp
+  src/world/broad_phase.cpp
   src/world/flight_track.cpp
   src/world/world_config.cpp
   src/world/world_body.cpp

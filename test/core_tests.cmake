@@ -44,6 +44,8 @@ foreach(core_test
     world/test_support_plane
     world/test_flight_track
     world/test_nonsmooth_contact
+    world/test_island_contact
+    world/test_broad_phase
     world/test_world
     world/test_world_edges
     world/test_world_robustness

@@ -1,0 +1,215 @@
+// The fixed-step nonsmooth fallback for an island: several stones touching each other and the
+// board or the table, where no exact model exists (a stone resting on another, a row pushed
+// along the board, a pile; also a single stone on an edge, a corner or a side face). Issue 15
+// item 7; docs/physics.md, "World" and "Stone–stone contact". A Moreau-Jean scheme with e = 0 and
+// Coulomb friction (Moreau 1988; Jean 1999; Acary & Brogliato, "Numerical Methods for Nonsmooth
+// Dynamical Systems", 2008), built from the exact pieces, per sub-step h:
+//   1. exact free flight of every member over h (closed form, ExactMotion);
+//   2. positions out of every overlap, Gauss-Seidel over all contacts until none is left: a
+//      board or table contact translates the stone along its normal by the overlap; a stone pair
+//      translates both along the pair's normal (lens_pair_distance), split by inverse mass, except
+//      that a stone pressed by the correction into a board contact it lies on does not move (the
+//      other takes all of it: a stack converges in one sweep instead of halving per sweep);
+//   3. velocities: a plastic impulse at every contact within the margin that still approaches
+//      (board: resolve_impact with e* = 0; pair: resolve_pair_impact with e* = 0, both with
+//      Coulomb friction integrated through the impulse, so each impulse can only remove energy),
+//      Gauss-Seidel until none approaches (the board's contacts first; after 8 plain sweeps a
+//      stone that a pair impulse would press into the board is held and the other meets it as a
+//      moving surface, so a stack converges at once instead of halving per sweep);
+//   4. the energy guard over the island's total energy (body_energy of every member): above the
+//      previous lattice state's, (v, L) of all members are scaled by one factor (every velocity
+//      constraint is linear and homogeneous, so no contact starts to approach); when the
+//      potential energy alone is above it (a correction lifted a nearly still island: there is no
+//      kinetic energy to pay for the lift), the touching members keep their previous poses with
+//      zero velocities, a state that overlaps nothing and whose energy is the previous potential
+//      energy. So the island's energy never rises, from lattice state to lattice state and for the
+//      samples between them (below).
+// What is NOT exact: first order in h, a new impact inside the island is plastic, no rolling
+// resistance or spinning friction, rest by a speed threshold held over a time. What is kept: no
+// handed-out state overlaps (board and table gap >= -1e-12 m, pair gap >= -1e-12 m), no energy is
+// created, every impulse stays in Coulomb's cone.
+//
+// The sub-steps lie on the lattice t0 + k h, so the motion does not depend on when it is sampled.
+// A sample at t between lattice points k and k+1 is a partial sub-step from k (its poses) whose
+// kinetic energy is scaled so that the island's energy equals that of lattice state k+1 (or, when
+// that cannot be reached by scaling, lattice state k+1 itself): the energies handed out are
+// E_k >= E(samples) = E_{k+1}, never rising.
+//
+// Ends, at a lattice point. A member with no stone contact within the margin leaves the island
+//   plane      when its one loaded contact is the top face or the table with the contact point
+//              plane_margin_m inside its region (the exact plane model takes over);
+//   rest       when it touches the board or the table and its speeds stayed below rest_speed_m_s
+//              for rest_time_s (velocities exactly 0);
+//   separated  when none of its contacts carried load, the exact time of impact finds its free
+//              flight contact-free of the board for separation_time_s, and no other member can
+//              reach it in that time (relative speed bound; the world must then search the pair
+//              times of impact of the flight it starts).
+// The island rests as a whole when every member touches something and every member's speeds
+// stayed below the threshold for rest_time_s: all leave with `rest` (velocities exactly 0). Members
+// that leave are out of the island; the rest go on. When none is left the island is finished.
+#pragma once
+
+#include <cstddef>
+#include <limits>
+#include <optional>
+#include <vector>
+
+#include "virtual_go/body/rigid_body_state.h"
+#include "virtual_go/contact/material.h"
+#include "virtual_go/flight/integrator.h"
+#include "virtual_go/go/board_distance.h"
+#include "virtual_go/world/support_plane.h"
+
+namespace virtual_go {
+
+struct NonsmoothContactOptions {
+  double step_s = 1e-4;  // the sub-step h, s
+  // Contacts with a gap up to this (m) count as touching: an approach there is stopped.
+  double contact_margin_m = 1e-9;
+  // The exact flight must be contact-free this long (s) for a member to end in flight.
+  double separation_time_s = 1e-3;
+  // The plane model takes over only with the contact point this far (m) inside its region:
+  // a hysteresis against switching back and forth at the board's edge.
+  double plane_margin_m = 1e-5;
+  // Rest: the centre's speed and the rim's speed |omega| a below this (m/s) ...
+  double rest_speed_m_s = 1e-5;
+  // ... for this long (s).
+  double rest_time_s = 0.01;
+  int max_sweeps = 32;  // Gauss-Seidel sweeps over the contacts' velocities per sub-step
+};
+
+// Throws InvalidArgument naming the option ("nonsmooth/step_s", ...).
+void validate_nonsmooth_options(const NonsmoothContactOptions& options);
+
+enum class NonsmoothEnd { none, separated, plane, rest };
+
+// Work and accuracy figures, for tests and benchmarks.
+struct NonsmoothCounters {
+  long steps = 0;        // committed sub-steps
+  long samples = 0;      // partial sub-steps for samples between lattice points
+  long impulses = 0;     // plastic impulses applied (board and pairs)
+  long projections = 0;  // position corrections (board and pairs)
+  long energy_guard_scalings = 0;
+  long separation_searches = 0;    // exact time-of-impact searches for the separated test
+  long pair_impulses = 0;          // of `impulses`, those between two members
+  long pair_projections = 0;       // of `projections`, those between two members
+  long pair_distances = 0;         // lens_pair_distance evaluations
+  long projection_sweeps = 0;      // Gauss-Seidel sweeps over the positions (committed steps)
+  long velocity_sweeps = 0;        // Gauss-Seidel sweeps over the velocities (committed steps)
+  int most_projection_sweeps = 0;  // in one committed sub-step
+  int most_velocity_sweeps = 0;    // in one committed sub-step
+  long holds = 0;  // sub-steps whose touching members kept their poses (lift not payable)
+  long projection_failures = 0;    // sub-steps whose overlaps the sweeps could not remove (held)
+  double deepest_overlap_m = 0.0;  // deepest overlap a free sub-step produced (corrected), m
+  double largest_energy_excess_j = 0.0;  // energy above the previous lattice state's left after
+                                         // the guard (0 by construction; measured), J
+};
+
+// One member: its lens against the board (BoardDistance carries the lens geometry), its mass
+// model and gravity (the same gravity for all), its state at the island's start time.
+struct IslandBody {
+  BoardDistance board;
+  MotionSetup setup;
+  RigidBodyState state;
+};
+
+struct IslandMemberEnd {
+  std::size_t member = 0;  // index in the constructor's list
+  NonsmoothEnd end = NonsmoothEnd::none;
+  std::optional<SupportPlane> plane;  // end == plane: the plane it lies on
+  BoardContact contact;               // end == plane: the contact on it
+};
+
+struct IslandOutcome {
+  double time_s = 0.0;
+  // Every member at time_s, in the constructor's order (a member that left earlier: the state
+  // it left with, at its own time).
+  std::vector<RigidBodyState> states;
+  std::vector<IslandMemberEnd> left;  // the members that left at time_s, and how
+  bool finished = false;              // no member is left: only time_s may be asked again
+};
+
+class NonsmoothIsland {
+ public:
+  // Every body's state at t0_s (world time line, s); they touch each other or the board (or
+  // nearly). Contacts: board_material on the board's features, table_material on the table,
+  // stone_material between members (all taken plastic, e* = 0). Throws InvalidArgument naming
+  // the field ("island/bodies", "island/gravity", "contact/stone/friction", ...).
+  NonsmoothIsland(std::vector<IslandBody> bodies, const ContactMaterial& board_material,
+                  const ContactMaterial& table_material, const ContactMaterial& stone_material,
+                  double t0_s, const NonsmoothContactOptions& options = NonsmoothContactOptions());
+
+  // Commits the sub-steps up to t_end_s (>= the time of the previous call) and returns the
+  // states there, or stops at the first lattice point where members leave (IslandOutcome::left;
+  // the others go on with the next call; when none is left the island is finished and only that
+  // time may be asked for again). `max_steps` is a work budget as in NonsmoothContact::advance.
+  // Throws InvalidArgument for a non-finite or earlier time, or a negative budget.
+  IslandOutcome advance(double t_end_s, long max_steps = std::numeric_limits<long>::max());
+
+  std::size_t size() const { return members_.size(); }
+  bool active(std::size_t member) const { return lattice_.active[member] != 0; }
+  double start_time() const { return t0_; }
+  double lattice_time() const { return lattice(steps_); }  // time of the last committed state
+  const RigidBodyState& lattice_state(std::size_t member) const { return lattice_.states[member]; }
+  bool finished() const { return finished_.has_value(); }
+  const NonsmoothCounters& counters() const { return counters_; }
+  const NonsmoothContactOptions& options() const { return options_; }
+
+ private:
+  struct Member {
+    BoardDistance board;
+    MotionSetup setup;
+  };
+  struct MemberContacts {
+    int board = 0;            // board or table contacts within the margin
+    BoardContact contact[2];  // those contacts
+    int stones = 0;           // contacts with other members within the margin
+    bool loaded = false;      // a correction or an impulse acted on it
+  };
+  struct PairContact {
+    std::size_t a = 0, b = 0;
+    Eigen::Vector3d point_world, normal_world;  // normal from a to b
+  };
+  struct Step {
+    std::vector<RigidBodyState> states;
+    std::vector<MemberContacts> contacts;
+  };
+  // A lattice point: the states handed out there, who is still in, the calm counts.
+  struct Lattice {
+    std::vector<RigidBodyState> states;
+    std::vector<char> active;
+    std::vector<long> calm_steps;
+    double energy_j = 0.0;  // of the active members
+    std::vector<IslandMemberEnd> left;
+  };
+
+  Step sub_step(const std::vector<RigidBodyState>& from, double h_s, double energy_cap_j,
+                bool commit);
+  void project(std::vector<RigidBodyState>& s, std::vector<MemberContacts>& mc, bool commit,
+               int& sweeps);
+  // The contacts within the margin of the poses in s; false if any overlaps beyond tolerance.
+  bool gather(const std::vector<RigidBodyState>& s, std::vector<MemberContacts>& mc,
+              std::vector<PairContact>& pairs, bool commit);
+  Lattice next_lattice();
+  double energy(const std::vector<RigidBodyState>& s, const std::vector<char>& active) const;
+  double member_energy(std::size_t i, const RigidBodyState& s) const;
+  double potential(const std::vector<RigidBodyState>& s, const std::vector<char>& active) const;
+  // Scales v and L of the active members by one factor so that the energy becomes energy_j;
+  // false (nothing changed) when that is impossible.
+  bool scale_kinetic_energy(std::vector<RigidBodyState>& s, double energy_j) const;
+  double lattice(long k) const { return t0_ + static_cast<double>(k) * options_.step_s; }
+  IslandOutcome outcome(double t) const;
+
+  std::vector<Member> members_;
+  ContactMaterial board_plastic_, table_plastic_, stone_plastic_;
+  NonsmoothContactOptions options_;
+  double t0_;
+  long steps_ = 0;
+  Lattice lattice_;               // at lattice(steps_)
+  std::optional<Lattice> ahead_;  // lattice(steps_ + 1), computed for a sample
+  double reached_;
+  std::optional<IslandOutcome> finished_;
+  NonsmoothCounters counters_;
+};
+
+}  // namespace virtual_go

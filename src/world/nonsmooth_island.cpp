@@ -1,0 +1,626 @@
+#include "virtual_go/world/nonsmooth_island.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "virtual_go/body/rigid_body.h"
+#include "virtual_go/common/validation.h"
+#include "virtual_go/contact/impact.h"
+#include "virtual_go/contact/pair_impact.h"
+#include "virtual_go/contact/time_of_impact.h"
+#include "virtual_go/flight/exact_motion.h"
+#include "virtual_go/geometry/lens_pair_distance.h"
+
+namespace virtual_go {
+namespace {
+
+// Contact-point normal speeds above -this (m/s) are not approaching: they move a contact by less
+// than 1e-16 m in a sub-step.
+constexpr double kApproachToleranceMps = 1e-12;
+// A position correction moves this much (m) beyond the touching pose, so that the recomputed
+// gap, whose round-off is ~1e-17 m, comes out non-negative.
+constexpr double kCorrectionSlackM = 1e-15;
+// No handed-out state overlaps by more than this (m): gaps are exact to ~1e-17 m.
+constexpr double kGapToleranceM = 1e-12;
+constexpr int kMaxCorrections = 16;        // per member and sweep, board and table
+constexpr int kMaxProjectionSweeps = 100;  // then the touching members keep their poses
+// The plane model accepts |u_n| <= 1e-6 m/s; hand over only well inside that.
+constexpr double kPlaneNormalSpeedMps = 1e-7;
+// A pair correction along n does not move a stone whose board contact normal makes a cosine
+// above this with the direction it would be pushed into the board.
+constexpr double kBlockedCosine = 1e-6;
+// A pair impulse does not move a stone it would press into a board contact it lies on with a
+// cosine above this (mostly into the board: a stone under another, not one pushed along a row).
+constexpr double kPressedCosine = 0.5;
+// ... but only after this many plain sweeps: the first ones pass the impulse through the lower
+// stone to the board with its torque (an eccentric landing can tip it); holding the lower stone
+// from then on makes the rest converge at once instead of halving per sweep.
+constexpr int kPlainSweeps = 8;
+
+ContactMaterial plastic(ContactMaterial m) {
+  m.restitution = 0.0;
+  return m;
+}
+
+bool apart_by_bounds(const BoardDistance& a, const RigidBodyState& sa, const BoardDistance& b,
+                     const RigidBodyState& sb, double margin_m) {
+  // A lens lies within the sphere of its rim radius about its centre.
+  const double reach = a.lens().half_width() + b.lens().half_width() + margin_m;
+  return (sb.position_world - sa.position_world).squaredNorm() > reach * reach;
+}
+
+// The pair's contact. Touching, the normal may be any direction of a set (two flat stones rim to
+// rim: every tilt within the rims' fans), and lens_pair_distance returns one of them; overlapping
+// rims (after a free sub-step) have their shortest separating translation at the edge of the
+// fans, 44.6 degrees from the stones' plane for size 33. Either would make a stone pushed along a
+// row ride up onto its neighbour. The centre line's supporting-plane gap is a lower bound of the
+// distance, so a correction along it removes the overlap too: it is preferred when its gap is as
+// good within the gap tolerance, or, overlapping, when its correction is at most
+// kCentreLineCost times the shortest.
+constexpr double kCentreLineCost = 1.5;
+
+LensPairContact pair_contact(const BoardDistance& a, const RigidBodyState& sa,
+                             const BoardDistance& b, const RigidBodyState& sb) {
+  const LensPose pa = lens_pose(sa), pb = lens_pose(sb);
+  const LensPairContact best = lens_pair_distance(a.lens(), pa, b.lens(), pb);
+  const Eigen::Vector3d centre_line = pb.center_world - pa.center_world;
+  if (!(centre_line.norm() > 0.0)) return best;
+  const LensPairContact along =
+      lens_pair_contact_along(a.lens(), pa, b.lens(), pb, centre_line.normalized());
+  const bool as_good = along.gap_m >= best.gap_m - kGapToleranceM;
+  const bool cheap = best.gap_m < 0.0 && along.gap_m >= kCentreLineCost * best.gap_m;
+  return as_good || cheap ? along : best;
+}
+
+}  // namespace
+
+void validate_nonsmooth_options(const NonsmoothContactOptions& o) {
+  require_positive("nonsmooth/step_s", o.step_s);
+  require_positive("nonsmooth/contact_margin_m", o.contact_margin_m);
+  require_positive("nonsmooth/separation_time_s", o.separation_time_s);
+  require_positive("nonsmooth/plane_margin_m", o.plane_margin_m);
+  require_positive("nonsmooth/rest_speed_m_s", o.rest_speed_m_s);
+  require_positive("nonsmooth/rest_time_s", o.rest_time_s);
+  if (o.step_s > 0.01) {
+    throw InvalidArgument("nonsmooth/step_s",
+                          "nonsmooth/step_s must be at most 0.01 s, got " + format_value(o.step_s));
+  }
+  if (o.max_sweeps < 1) {
+    throw InvalidArgument("nonsmooth/max_sweeps", "nonsmooth/max_sweeps must be at least 1, got " +
+                                                      std::to_string(o.max_sweeps));
+  }
+}
+
+NonsmoothIsland::NonsmoothIsland(std::vector<IslandBody> bodies,
+                                 const ContactMaterial& board_material,
+                                 const ContactMaterial& table_material,
+                                 const ContactMaterial& stone_material, double t0_s,
+                                 const NonsmoothContactOptions& options)
+    : board_plastic_(plastic(board_material)),
+      table_plastic_(plastic(table_material)),
+      stone_plastic_(plastic(stone_material)),
+      options_(options),
+      t0_(t0_s),
+      reached_(t0_s) {
+  require_finite("contact start time", t0_s);
+  if (bodies.empty()) {
+    throw InvalidArgument("island/bodies", "an island needs at least one body, got none");
+  }
+  validate_material("contact/board", board_material);
+  validate_material("contact/table", table_material);
+  validate_material("contact/stone", stone_material);
+  validate_nonsmooth_options(options);
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    require_finite("gravity", bodies[i].setup.gravity_world);
+    if (bodies[i].setup.gravity_world != bodies.front().setup.gravity_world) {
+      throw InvalidArgument("island/gravity", "island body " + std::to_string(i) +
+                                                  " has a gravity other than body 0's: one "
+                                                  "gravity for all members");
+    }
+  }
+  for (IslandBody& b : bodies) {
+    lattice_.states.push_back(b.state.validated());
+    members_.push_back(Member{b.board, b.setup});
+  }
+  lattice_.active.assign(members_.size(), 1);
+  lattice_.calm_steps.assign(members_.size(), 0);
+  lattice_.energy_j = energy(lattice_.states, lattice_.active);
+}
+
+double NonsmoothIsland::member_energy(std::size_t i, const RigidBodyState& s) const {
+  return body_energy(members_[i].setup.model, s, members_[i].setup.gravity_world);
+}
+
+double NonsmoothIsland::energy(const std::vector<RigidBodyState>& s,
+                               const std::vector<char>& active) const {
+  double e = 0.0;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    if (active[i]) e += member_energy(i, s[i]);
+  }
+  return e;
+}
+
+double NonsmoothIsland::potential(const std::vector<RigidBodyState>& s,
+                                  const std::vector<char>& active) const {
+  // body_energy with v = L = 0: the one formula, its kinetic terms exactly zero.
+  double e = 0.0;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    if (!active[i]) continue;
+    RigidBodyState still = s[i];
+    still.velocity_world.setZero();
+    still.angular_momentum_world.setZero();
+    e += member_energy(i, still);
+  }
+  return e;
+}
+
+bool NonsmoothIsland::scale_kinetic_energy(std::vector<RigidBodyState>& s, double energy_j) const {
+  // Velocity and angular momentum of all members scaled together: the kinetic energy is
+  // quadratic in them, the potential energy and the poses do not change.
+  const double p = potential(s, lattice_.active);
+  const double kinetic = energy(s, lattice_.active) - p;
+  const double target = energy_j - p;
+  if (!(target >= 0.0) || !(kinetic > 0.0)) return false;
+  const double scale = std::sqrt(target / kinetic);
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    if (!lattice_.active[i]) continue;
+    s[i].velocity_world *= scale;
+    s[i].angular_momentum_world *= scale;
+  }
+  // The scaled energy can come out a few ulps above the target: shrink a little more.
+  double shrink = 1e-15;
+  for (int k = 0; k < 40 && energy(s, lattice_.active) > energy_j; ++k, shrink *= 4.0) {
+    for (std::size_t i = 0; i < s.size(); ++i) {
+      if (!lattice_.active[i]) continue;
+      s[i].velocity_world *= 1.0 - shrink;
+      s[i].angular_momentum_world *= 1.0 - shrink;
+    }
+  }
+  return energy(s, lattice_.active) <= energy_j;
+}
+
+void NonsmoothIsland::project(std::vector<RigidBodyState>& s, std::vector<MemberContacts>& mc,
+                              bool commit, int& sweeps) {
+  const std::size_t n = s.size();
+  // The board normals each member lies on (within the margin after its board corrections).
+  std::vector<int> supports(n, 0);
+  std::vector<Eigen::Vector3d> support_normal(2 * n);
+  for (sweeps = 0; sweeps < kMaxProjectionSweeps; ++sweeps) {
+    bool corrected = false;
+    // The board and the table: translate along the deeper contact's normal (their normals are
+    // the separating directions, so one correction along one of them makes that gap zero).
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!lattice_.active[i]) continue;
+      for (int k = 0; k < kMaxCorrections; ++k) {
+        const LensPose pose = lens_pose(s[i]);
+        const BoardContact box = members_[i].board.box(pose), table = members_[i].board.table(pose);
+        const BoardContact& deeper = table.lens.gap_m < box.lens.gap_m ? table : box;
+        if (k == 0) {
+          supports[i] = 0;
+          for (const BoardContact* c : {&box, &table}) {
+            if (c->lens.gap_m <= options_.contact_margin_m) {
+              support_normal[2 * i + supports[i]++] = c->lens.normal_world;
+            }
+          }
+        }
+        if (deeper.lens.gap_m >= 0.0) break;
+        if (commit) {
+          counters_.deepest_overlap_m = std::max(counters_.deepest_overlap_m, -deeper.lens.gap_m);
+          ++counters_.projections;
+        }
+        s[i].position_world += (kCorrectionSlackM - deeper.lens.gap_m) * deeper.lens.normal_world;
+        mc[i].loaded = true;
+        corrected = true;
+      }
+    }
+    // Stone pairs: both along the pair normal, split by inverse mass; a stone that the
+    // correction would press into a board contact it lies on stays (the board holds it).
+    for (std::size_t a = 0; a < n; ++a) {
+      if (!lattice_.active[a]) continue;
+      for (std::size_t b = a + 1; b < n; ++b) {
+        if (!lattice_.active[b] ||
+            apart_by_bounds(members_[a].board, s[a], members_[b].board, s[b], 0.0)) {
+          continue;
+        }
+        const LensPairContact c = pair_contact(members_[a].board, s[a], members_[b].board, s[b]);
+        if (commit) ++counters_.pair_distances;
+        if (c.gap_m >= 0.0) continue;
+        auto blocked = [&](std::size_t i, const Eigen::Vector3d& push) {
+          for (int k = 0; k < supports[i]; ++k) {
+            if (push.dot(support_normal[2 * i + k]) < -kBlockedCosine) return true;
+          }
+          return false;
+        };
+        double wa = 1.0 / members_[a].setup.model.mass_properties().mass();
+        double wb = 1.0 / members_[b].setup.model.mass_properties().mass();
+        const bool hold_a = blocked(a, -c.normal_world), hold_b = blocked(b, c.normal_world);
+        if (hold_a != hold_b) {
+          if (hold_a) wa = 0.0;
+          if (hold_b) wb = 0.0;
+        }
+        const double depth = kCorrectionSlackM - c.gap_m;
+        s[a].position_world -= (wa / (wa + wb) * depth) * c.normal_world;
+        s[b].position_world += (wb / (wa + wb) * depth) * c.normal_world;
+        if (commit) {
+          counters_.deepest_overlap_m = std::max(counters_.deepest_overlap_m, -c.gap_m);
+          ++counters_.projections;
+          ++counters_.pair_projections;
+        }
+        mc[a].loaded = mc[b].loaded = true;
+        corrected = true;
+      }
+    }
+    if (!corrected) {
+      ++sweeps;
+      return;
+    }
+  }
+}
+
+bool NonsmoothIsland::gather(const std::vector<RigidBodyState>& s, std::vector<MemberContacts>& mc,
+                             std::vector<PairContact>& pairs, bool commit) {
+  const std::size_t n = s.size();
+  bool clear = true;
+  pairs.clear();
+  for (std::size_t i = 0; i < n; ++i) {
+    mc[i].board = mc[i].stones = 0;
+    if (!lattice_.active[i]) continue;
+    const LensPose pose = lens_pose(s[i]);
+    for (const BoardContact& c : {members_[i].board.box(pose), members_[i].board.table(pose)}) {
+      if (c.lens.gap_m < -kGapToleranceM) clear = false;
+      if (c.lens.gap_m <= options_.contact_margin_m) mc[i].contact[mc[i].board++] = c;
+    }
+  }
+  for (std::size_t a = 0; a < n; ++a) {
+    if (!lattice_.active[a]) continue;
+    for (std::size_t b = a + 1; b < n; ++b) {
+      if (!lattice_.active[b] || apart_by_bounds(members_[a].board, s[a], members_[b].board, s[b],
+                                                 options_.contact_margin_m)) {
+        continue;
+      }
+      const LensPairContact c = pair_contact(members_[a].board, s[a], members_[b].board, s[b]);
+      if (commit) ++counters_.pair_distances;
+      if (c.gap_m < -kGapToleranceM) clear = false;
+      if (c.gap_m > options_.contact_margin_m) continue;
+      ++mc[a].stones;
+      ++mc[b].stones;
+      pairs.push_back(PairContact{a, b, 0.5 * (c.point_a_world + c.point_b_world), c.normal_world});
+    }
+  }
+  return clear;
+}
+
+NonsmoothIsland::Step NonsmoothIsland::sub_step(const std::vector<RigidBodyState>& from, double h_s,
+                                                double energy_cap_j, bool commit) {
+  const std::size_t n = from.size();
+  Step out;
+  out.states = from;
+  out.contacts.assign(n, MemberContacts{});
+  // 1. Exact free flight.
+  for (std::size_t i = 0; i < n; ++i) {
+    if (lattice_.active[i]) out.states[i] = ExactMotion(members_[i].setup, from[i]).state_at(h_s);
+  }
+  std::vector<RigidBodyState>& s = out.states;
+
+  // 2. Out of every overlap.
+  int projection_sweeps = 0;
+  project(s, out.contacts, commit, projection_sweeps);
+  std::vector<PairContact> pairs;
+  bool hold = false;
+  if (!gather(s, out.contacts, pairs, commit)) {
+    // The sweeps did not remove every overlap: keep the previous poses (below).
+    hold = true;
+    if (commit) ++counters_.projection_failures;
+  }
+
+  // 3. Plastic impulses at the contacts within the margin, Gauss-Seidel until none approaches:
+  // the board's first (they carry the weight), then the pairs.
+  int velocity_sweeps = 0;
+  for (; !hold && velocity_sweeps < options_.max_sweeps; ++velocity_sweeps) {
+    bool acted = false;
+    for (std::size_t i = 0; i < n; ++i) {
+      const MemberContacts& m = out.contacts[i];
+      const MotionModel& model = members_[i].setup.model;
+      for (int k = 0; k < m.board; ++k) {
+        const BoardContact& c = m.contact[k];
+        const double u_n =
+            c.lens.normal_world.dot(point_velocity_world(model, s[i], c.lens.point_world));
+        if (!(u_n < -kApproachToleranceMps)) continue;
+        s[i] = resolve_impact(model, s[i], c.lens.point_world, c.lens.normal_world,
+                              c.on_table() ? table_plastic_ : board_plastic_,
+                              members_[i].setup.gravity_world)
+                   .state;
+        acted = true;
+        out.contacts[i].loaded = true;
+        if (commit) ++counters_.impulses;
+      }
+    }
+    for (const PairContact& p : pairs) {
+      const MotionModel &ma = members_[p.a].setup.model, &mb = members_[p.b].setup.model;
+      const double u_n = p.normal_world.dot(point_velocity_world(mb, s[p.b], p.point_world) -
+                                            point_velocity_world(ma, s[p.a], p.point_world));
+      if (!(u_n < -kApproachToleranceMps)) continue;
+      auto pressed = [&](std::size_t i, const Eigen::Vector3d& push) {
+        const MemberContacts& m = out.contacts[i];
+        for (int k = 0; k < m.board; ++k) {
+          if (push.dot(m.contact[k].lens.normal_world) < -kPressedCosine) return true;
+        }
+        return false;
+      };
+      const bool shock = velocity_sweeps >= kPlainSweeps;
+      const bool held_a = shock && pressed(p.a, -p.normal_world);
+      const bool held_b = shock && pressed(p.b, p.normal_world);
+      if (held_a != held_b) {
+        // The board holds the lower stone: the upper one meets it as a surface moving with the
+        // lower's contact point (the one-body impact in that frame: only K of the upper stone
+        // and the relative velocity enter), and the lower stone is not moved. The energy change
+        // is the relative one plus P . u_lower, ~0 for a supported stone; the guard covers it.
+        const std::size_t held = held_a ? p.a : p.b, moving = held_a ? p.b : p.a;
+        const Eigen::Vector3d n = held_a ? p.normal_world : Eigen::Vector3d(-p.normal_world);
+        RigidBodyState relative = s[moving];
+        relative.velocity_world -=
+            point_velocity_world(members_[held].setup.model, s[held], p.point_world);
+        const Impact impact =
+            resolve_impact(members_[moving].setup.model, relative, p.point_world, n, stone_plastic_,
+                           members_[moving].setup.gravity_world);
+        s[moving].velocity_world += impact.state.velocity_world - relative.velocity_world;
+        s[moving].angular_momentum_world = impact.state.angular_momentum_world;
+      } else {
+        const PairImpact impact = resolve_pair_impact(ma, s[p.a], mb, s[p.b], p.point_world,
+                                                      p.normal_world, stone_plastic_);
+        s[p.a] = impact.state_a;
+        s[p.b] = impact.state_b;
+      }
+      acted = true;
+      out.contacts[p.a].loaded = out.contacts[p.b].loaded = true;
+      if (commit) {
+        ++counters_.impulses;
+        ++counters_.pair_impulses;
+      }
+    }
+    if (!acted) {
+      ++velocity_sweeps;
+      break;
+    }
+  }
+
+  // 4. The energy guard over the island: never above the previous lattice state's energy.
+  if (!hold && energy(s, lattice_.active) > energy_cap_j) {
+    if (commit) ++counters_.energy_guard_scalings;
+    if (!scale_kinetic_energy(s, energy_cap_j) || energy(s, lattice_.active) > energy_cap_j) {
+      hold = true;  // the lift cannot be paid for
+    }
+  }
+  if (hold) {
+    // The members touching something keep their previous poses, still; free members keep their
+    // exact flight (energy conserved to round-off). If even that is above the cap, all keep
+    // their previous poses: then the energy is the previous potential energy, <= the cap.
+    if (commit) ++counters_.holds;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!lattice_.active[i]) continue;
+      const bool free =
+          out.contacts[i].board == 0 && out.contacts[i].stones == 0 && !out.contacts[i].loaded;
+      if (free) continue;
+      s[i] = from[i];
+      s[i].velocity_world.setZero();
+      s[i].angular_momentum_world.setZero();
+      out.contacts[i].loaded = true;
+    }
+    if (energy(s, lattice_.active) > energy_cap_j) {
+      for (std::size_t i = 0; i < n; ++i) {
+        if (!lattice_.active[i]) continue;
+        s[i] = from[i];
+        s[i].velocity_world.setZero();
+        s[i].angular_momentum_world.setZero();
+      }
+    }
+    gather(s, out.contacts, pairs, commit);
+  }
+  if (commit) {
+    counters_.projection_sweeps += projection_sweeps;
+    counters_.velocity_sweeps += velocity_sweeps;
+    counters_.most_projection_sweeps =
+        std::max(counters_.most_projection_sweeps, projection_sweeps);
+    counters_.most_velocity_sweeps = std::max(counters_.most_velocity_sweeps, velocity_sweeps);
+    const double excess = energy(s, lattice_.active) - energy_cap_j;
+    if (excess > 0.0) {
+      counters_.largest_energy_excess_j = std::max(counters_.largest_energy_excess_j, excess);
+    }
+  }
+  return out;
+}
+
+NonsmoothIsland::Lattice NonsmoothIsland::next_lattice() {
+  const double t = lattice(steps_ + 1);
+  const double h = t - lattice(steps_);
+  const Step step = sub_step(lattice_.states, h, lattice_.energy_j, true);
+  Lattice next = lattice_;
+  next.states = step.states;
+  next.left.clear();
+  const std::size_t n = next.states.size();
+  const NonsmoothContactOptions& o = options_;
+  auto calm_for_long = [&](std::size_t i) {
+    return static_cast<double>(next.calm_steps[i]) * o.step_s >= o.rest_time_s;
+  };
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!next.active[i]) continue;
+    const RigidBodyState& s = next.states[i];
+    const Eigen::Vector3d omega =
+        members_[i].setup.model.angular_velocity_world(s.orientation, s.angular_momentum_world);
+    const double rim_speed = omega.norm() * members_[i].board.lens().half_width();
+    const bool calm = s.velocity_world.norm() <= o.rest_speed_m_s && rim_speed <= o.rest_speed_m_s;
+    next.calm_steps[i] = calm ? next.calm_steps[i] + 1 : 0;
+  }
+  std::vector<char> leaving(n, 0);
+  auto leave = [&](std::size_t i, NonsmoothEnd end) {
+    IslandMemberEnd e;
+    e.member = i;
+    e.end = end;
+    if (end == NonsmoothEnd::rest) {
+      next.states[i].velocity_world.setZero();
+      next.states[i].angular_momentum_world.setZero();
+    }
+    next.left.push_back(e);
+    leaving[i] = 1;
+    return &next.left.back();
+  };
+  // The plane model first: a member alone on the top face or the table.
+  for (std::size_t i = 0; i < n; ++i) {
+    const MemberContacts& m = step.contacts[i];
+    if (!next.active[i] || m.stones > 0 || !m.loaded || m.board != 1) continue;
+    const BoardContact& c = m.contact[0];
+    const RigidBodyState& s = next.states[i];
+    const double u_n = c.lens.normal_world.dot(
+        point_velocity_world(members_[i].setup.model, s, c.lens.point_world));
+    const std::optional<SupportPlane> plane =
+        support_plane(members_[i].board, c, lens_pose(s), o.plane_margin_m);
+    if (plane && std::abs(u_n) <= kPlaneNormalSpeedMps) {
+      IslandMemberEnd* e = leave(i, NonsmoothEnd::plane);
+      e->plane = plane;
+      e->contact = c;
+    }
+  }
+  // Rest of the island as a whole: everyone else touching something and calm for long enough.
+  bool all_rest = true;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!next.active[i] || leaving[i]) continue;
+    const MemberContacts& m = step.contacts[i];
+    if (m.board + m.stones == 0 || !calm_for_long(i)) all_rest = false;
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!next.active[i] || leaving[i]) continue;
+    const MemberContacts& m = step.contacts[i];
+    if (all_rest) {
+      leave(i, NonsmoothEnd::rest);
+      continue;
+    }
+    if (m.stones > 0) continue;
+    if (m.board > 0 && calm_for_long(i)) {
+      leave(i, NonsmoothEnd::rest);
+      continue;
+    }
+    if (m.loaded) continue;
+    // Separated: free of the board (exact time of impact) and out of every other member's
+    // reach for separation_time_s (a bound: relative speed, rims' speeds, gravity).
+    const RigidBodyState& s = next.states[i];
+    bool reachable = false;
+    for (std::size_t j = 0; j < n && !reachable; ++j) {
+      if (j == i || !next.active[j]) continue;
+      const RigidBodyState& r = next.states[j];
+      auto rim = [&](std::size_t k, const RigidBodyState& x) {
+        return members_[k]
+                   .setup.model.angular_velocity_world(x.orientation, x.angular_momentum_world)
+                   .norm() *
+               members_[k].board.lens().half_width();
+      };
+      const double ts = o.separation_time_s;
+      const double reach = (s.velocity_world - r.velocity_world).norm() * ts +
+                           (rim(i, s) + rim(j, r)) * ts +
+                           members_[i].setup.gravity_world.norm() * ts * ts + o.contact_margin_m;
+      if (!apart_by_bounds(members_[i].board, s, members_[j].board, r, reach)) {
+        const LensPairContact c = lens_pair_distance(members_[i].board.lens(), lens_pose(s),
+                                                     members_[j].board.lens(), lens_pose(r));
+        ++counters_.pair_distances;
+        reachable = c.gap_m <= reach;
+      }
+    }
+    if (reachable) continue;
+    ++counters_.separation_searches;
+    const TimeOfImpact toi = board_time_of_impact(members_[i].board, members_[i].setup, s, t, t,
+                                                  t + o.separation_time_s);
+    if (!toi.hit && !toi.exhausted) leave(i, NonsmoothEnd::separated);
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    if (leaving[i]) next.active[i] = 0;
+  }
+  next.energy_j = energy(next.states, next.active);
+  return next;
+}
+
+IslandOutcome NonsmoothIsland::outcome(double t) const {
+  IslandOutcome o;
+  o.time_s = t;
+  o.states = lattice_.states;
+  return o;
+}
+
+IslandOutcome NonsmoothIsland::advance(double t_end_s, long max_steps) {
+  require_finite("nonsmooth advance time", t_end_s);
+  if (max_steps < 0) {
+    throw InvalidArgument(
+        "max_steps", "nonsmooth advance: max_steps must be >= 0, got " + std::to_string(max_steps));
+  }
+  if (finished_) {
+    if (t_end_s != finished_->time_s) {
+      throw InvalidArgument("t_end_s",
+                            "nonsmooth contact ended at t = " + format_value(finished_->time_s) +
+                                " s; it cannot be advanced to " + format_value(t_end_s) + " s");
+    }
+    return *finished_;
+  }
+  if (t_end_s < reached_) {
+    throw InvalidArgument("t_end_s", "nonsmooth advance time " + format_value(t_end_s) +
+                                         " s is before the time already reached, " +
+                                         format_value(reached_) + " s");
+  }
+  for (long taken = 0; lattice(steps_ + 1) <= t_end_s; ++taken) {
+    const double t = lattice(steps_ + 1);
+    if (taken >= max_steps) {
+      // The budget is spent: stop at the last lattice point (or where the previous call
+      // stopped, if later), to be continued.
+      t_end_s = std::max(reached_, lattice(steps_));
+      break;
+    }
+    Lattice next = ahead_ ? std::move(*ahead_) : next_lattice();
+    ahead_.reset();
+    ++steps_;
+    ++counters_.steps;
+    lattice_ = std::move(next);
+    if (!lattice_.left.empty()) {
+      reached_ = t;
+      IslandOutcome o = outcome(t);
+      o.left = lattice_.left;
+      o.finished = std::none_of(lattice_.active.begin(), lattice_.active.end(),
+                                [](char a) { return a != 0; });
+      if (o.finished) finished_ = o;
+      return o;
+    }
+  }
+  reached_ = t_end_s;
+  const double since = t_end_s - lattice(steps_);
+  if (since <= 0.0) return outcome(t_end_s);
+  // A sample between lattice points: the partial sub-step's poses with the island's energy set
+  // to that of the next lattice state (computed ahead; committing it later gives the same
+  // state), so the energies handed out never rise; when scaling cannot reach it (no kinetic
+  // energy, or the potential above it), the next lattice state itself.
+  ++counters_.samples;
+  if (!ahead_) ahead_ = next_lattice();
+  const double next_j = energy(ahead_->states, lattice_.active);
+  Step partial = sub_step(lattice_.states, since, lattice_.energy_j, false);
+  IslandOutcome o;
+  o.time_s = t_end_s;
+  bool scaled = scale_kinetic_energy(partial.states, next_j);
+  // Round-off can leave it ulps below next_j: grow it back as little as needed.
+  double grow = 1e-15;
+  for (int k = 0; scaled && k < 40 && energy(partial.states, lattice_.active) < next_j;
+       ++k, grow *= 4.0) {
+    for (std::size_t i = 0; i < partial.states.size(); ++i) {
+      if (!lattice_.active[i]) continue;
+      partial.states[i].velocity_world *= 1.0 + grow;
+      partial.states[i].angular_momentum_world *= 1.0 + grow;
+    }
+  }
+  const double e = energy(partial.states, lattice_.active);
+  if (scaled && e >= next_j && e <= lattice_.energy_j) {
+    o.states = partial.states;
+  } else {
+    o.states = ahead_->states;
+  }
+  for (std::size_t i = 0; i < o.states.size(); ++i) {
+    if (!lattice_.active[i]) o.states[i] = lattice_.states[i];
+  }
+  return o;
+}
+
+}  // namespace virtual_go
