@@ -25,18 +25,6 @@ using vg::StoneId;
 
 constexpr double kBlackA = 0.0111, kWhiteA = 0.01095, kHalfHeight = 0.0046;
 
-vg::World empty_world() { return vg::World(config(0.5), std::vector<vg::RigidBodyState>{}, 0.0); }
-
-template <typename F>
-std::string field_of(F&& f) {
-  try {
-    f();
-  } catch (const vg::InvalidArgument& e) {
-    return e.field();
-  }
-  return "(no error)";
-}
-
 // The smallest lens-lens gap over every pair of stones whose centres are within reach.
 double smallest_gap(const vg::World& world) {
   double worst = std::numeric_limits<double>::infinity();

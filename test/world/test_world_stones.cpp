@@ -48,19 +48,6 @@ vg::RigidBodyState flat_at(const vg::WorldConfig& c, const char* point, double l
   return at(Vector3d(p.x(), p.y(), kHalfHeight + lift));
 }
 
-// A world with no stone yet: every stone comes through add_stone.
-vg::World empty_world() { return vg::World(config(0.5), std::vector<vg::RigidBodyState>{}, 0.0); }
-
-template <typename F>
-std::string field_of(F&& f) {
-  try {
-    f();
-  } catch (const vg::InvalidArgument& e) {
-    return e.field();
-  }
-  return "(no error)";
-}
-
 // Black and white tilted 60 degrees fall from one height: each hits the board when its own
 // lowest point (the rim, a sin 60 below the centre) has fallen to the top face,
 // t = sqrt(2 (z0 - reach) / g), so the narrower white lands later; each stone's energy is its

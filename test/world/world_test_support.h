@@ -12,10 +12,12 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
 #include <vector>
 
 #include "support/convex_reference.h"
 #include "support/flight_reference.h"
+#include "virtual_go/common/validation.h"
 #include "virtual_go/go/stone.h"
 #include "virtual_go/world/world.h"
 
@@ -48,6 +50,22 @@ inline vg::WorldConfig config(double restitution = 0.5, double friction = 0.3,
     m->spinning_friction_m = spinning_m;
   }
   return c;
+}
+
+// A world with no stone yet: every stone comes through add_stone.
+inline vg::World empty_world() {
+  return vg::World(config(0.5), std::vector<vg::RigidBodyState>{}, 0.0);
+}
+
+// The field an InvalidArgument thrown by f names, "(no error)" when none is thrown.
+template <typename F>
+std::string field_of(F&& f) {
+  try {
+    f();
+  } catch (const vg::InvalidArgument& e) {
+    return e.field();
+  }
+  return "(no error)";
 }
 
 inline vg::RigidBodyState at(const Vector3d& x, const Quaterniond& q = Quaterniond::Identity(),
