@@ -120,7 +120,9 @@ void StoneSimulation::reset_world(const RigidBodyState& state, double t_s) {
   for (const PlacedStone& p : placed_) placed_states.push_back(world_->state(p.id));
   world_->reset({state}, t_s);
   initial_id_ = world_->id(0);
-  std::vector<WorldEvent> ignored;  // the stones' events at t_s follow at the next advance_to
+  // Their events at t_s (a resting stone re-added rests at once) are not reported: the stones
+  // only go on, on the new time line.
+  std::vector<WorldEvent> ignored;
   for (std::size_t k = 0; k < placed_.size(); ++k) {
     placed_[k].id = world_->add_stone(body_of_placed_[k], placed_states[k], t_s, ignored);
   }
