@@ -11,6 +11,7 @@ catkin_add_gtest(node_adapter_test
   test/sim/test_stone_simulation.cpp
   test/sim/test_stone_simulation_board.cpp
   test/sim/test_stone_simulation_controls.cpp
+  test/sim/test_stone_simulation_place.cpp
   test/sim/test_sim_pacer.cpp
   test/sim/test_stone_states.cpp
   test/sim/test_mesh_file.cpp
@@ -30,7 +31,8 @@ add_rostest_gtest(stone_node_rostest test/ros/stone_node_tf.test
   test/ros/test_stone_node_params.cpp
   test/ros/test_stone_node_board.cpp
   test/ros/test_stone_node_controls.cpp
-  test/ros/test_stone_node_stones.cpp)
+  test/ros/test_stone_node_stones.cpp
+  test/ros/test_stone_node_place.cpp)
 target_link_libraries(stone_node_rostest ${catkin_LIBRARIES} GTest::gtest)
 target_compile_definitions(stone_node_rostest PRIVATE STONE_NODE_PATH="$<TARGET_FILE:stone_node>")
 add_dependencies(stone_node_rostest stone_node ${${PROJECT_NAME}_EXPORTED_TARGETS}
@@ -44,7 +46,8 @@ foreach(node_test
     stone_node_board
     stone_node_controls
     stone_node_own_clock
-    stone_node_stones)
+    stone_node_stones
+    stone_node_place)
   add_rostest(test/ros/${node_test}.test DEPENDENCIES stone_node_rostest stone_node)
 endforeach()
 

@@ -16,3 +16,4 @@ target_compile_definitions(test_replay PRIVATE VG_README="${PROJECT_SOURCE_DIR}/
 file(WRITE ${CATKIN_DEVEL_PREFIX}/share/${PROJECT_NAME}/test_data_paths.txt
   "game ${VG_KIGO_GAMES}/Honinbo-51-5.sgf\ngnugo ${VG_GNUGO}\n")
 add_rostest(test/replay/sgf_replay.test DEPENDENCIES sgf_replay)
+add_rostest(test/replay/sgf_replay_node.test DEPENDENCIES sgf_replay stone_node)

@@ -3,6 +3,7 @@
 #include <rosgraph_msgs/Clock.h>
 #include <tf2_eigen/tf2_eigen.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <exception>
@@ -137,8 +138,16 @@ StoneNode::StoneNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_n
   // every tick, duplicating /tf) and a robot model (rviz reads robot_description once, so it
   // depends on start order too). The first one goes out right after the first transform.
   marker_ = make_marker(sim_);
-  // One stone, one colour today: its marker is the prototype of that colour.
+  // The initial stone's marker is the prototype of its colour; the other colour's (placed
+  // stones) is the same mesh recoloured as to_marker_msg colours it. Its lens is the initial
+  // stone's, not the colour's body (black 22.2 mm, white 21.9 mm): a 0.3 mm difference in rviz.
   stone_prototypes_[c.color] = marker_;
+  for (const std::string& color : stone_color_names()) {
+    if (stone_prototypes_.count(color)) continue;
+    visualization_msgs::Marker other = marker_;
+    other.color = to_marker_msg(sim_.stone(), color, c.stone_frame).color;
+    stone_prototypes_[color] = other;
+  }
   stone_markers_pub_ =
       private_nh_.advertise<visualization_msgs::MarkerArray>("stone_markers", 1, true);
   // The board is drawn in the fixed frame: it needs no transform, but rviz's tf filter still
@@ -159,6 +168,10 @@ StoneNode::StoneNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_n
       "set_angular_velocity", &StoneNode::on_set_angular_velocity, this);
   reset_srv_ = private_nh_.advertiseService("reset", &StoneNode::on_reset, this);
   set_state_srv_ = private_nh_.advertiseService("set_state", &StoneNode::on_set_state, this);
+  // Stones on the board (with ~board/enabled; otherwise they answer why not).
+  place_srv_ = private_nh_.advertiseService("place", &StoneNode::on_place, this);
+  remove_srv_ = private_nh_.advertiseService("remove", &StoneNode::on_remove, this);
+  clear_srv_ = private_nh_.advertiseService("clear", &StoneNode::on_clear, this);
 
   diagnostics_.setHardwareID(ros::this_node::getName());
   diagnostics_.add("simulation", this, &StoneNode::fill_diagnostics);
@@ -272,10 +285,18 @@ void StoneNode::publish_result(const UpdateResult& result) {
     publish_events(result);
     // Only a state that advanced is published: each stamp appears once (no TF_REPEATED_DATA).
     if (result.advanced) publish_state(result.stamp_ns);
-    if (stone_states_due(result, sim_.resting(), stones_pub_.getNumSubscribers() > 0)) {
+    const bool all_resting = sim_.world() ? sim_.world()->all_resting() : sim_.resting();
+    if (stone_states_due(result, all_resting, stones_pub_.getNumSubscribers() > 0)) {
       stones_pub_.publish(to_stone_states_msg(stone_states(sim_), to_ros_time(result.stamp_ns),
                                               sim_.config().world_frame));
     }
+    // Stones came or went: their markers now, not at the next marker tick.
+    const bool stones_changed =
+        std::any_of(result.events.begin(), result.events.end(), [](const SegmentEvent& e) {
+          return e.reason == EventReason::place || e.reason == EventReason::remove ||
+                 e.reason == EventReason::clear;
+        });
+    if (stones_changed && marker_sent_) publish_stone_markers();
     if (result.advanced && !marker_sent_) {
       marker_pub_.publish(marker_);
       publish_stone_markers();
@@ -351,7 +372,29 @@ void StoneNode::publish_state(std::int64_t stamp_ns) {
   const StoneConfig& c = sim_.config();
   const StateOutput& output = sim_.output();
   const ros::Time stamp = to_ros_time(stamp_ns);
-  tf_broadcaster_.sendTransform(to_transform_msg(output, stamp, c.world_frame, c.stone_frame));
+  // One TFMessage per tick: the initial stone, every placed stone that moves, and each resting
+  // placed stone once when it comes to rest and then every kRestingTfPeriodNs of simulated time
+  // (well inside tf's 10 s cache, so rviz and tf_echo keep finding it) rather than every tick.
+  std::vector<geometry_msgs::TransformStamped> transforms{
+      to_transform_msg(output, stamp, c.world_frame, c.stone_frame)};
+  std::map<std::string, std::int64_t> sent;
+  for (const PlacedStone& p : sim_.placed_stones()) {
+    const World& world = *sim_.world();
+    const auto last = tf_sent_ns_.find(p.name);
+    const bool resting = world.is_resting(p.id);
+    const bool due = !resting || last == tf_sent_ns_.end() ||
+                     stamp_ns - last->second >= kRestingTfPeriodNs || last->second > stamp_ns;
+    if (!due) {
+      sent[p.name] = last->second;
+      continue;
+    }
+    const WorldBody& body = world.body_model(world.body_of(p.id)).body();
+    transforms.push_back(to_transform_msg(state_output(body.model, world.state(p.id)), stamp,
+                                          c.world_frame, p.name));
+    sent[p.name] = stamp_ns;
+  }
+  tf_sent_ns_ = std::move(sent);  // removed stones are forgotten
+  tf_broadcaster_.sendTransform(transforms);
   if (pose_pub_.getNumSubscribers() > 0) {
     pose_pub_.publish(to_pose_stamped_msg(output, stamp, c.world_frame));
   }
@@ -372,6 +415,44 @@ bool StoneNode::on_set_angular_velocity(SetAngularVelocity::Request& request,
 bool StoneNode::on_reset(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response) {
   answer(
       "reset", [&] { return sim_.reset(); }, response);
+  return true;
+}
+
+bool StoneNode::on_place(PlaceStone::Request& request, PlaceStone::Response& response) {
+  answer(
+      "place",
+      [&] {
+        PlaceRequest r;
+        r.point = request.point;
+        r.color = request.color;
+        r.position_world = to_eigen(request.pose.position);
+        r.orientation_xyzw = to_xyzw(request.pose.orientation);
+        r.drop_height_m = request.drop_height;
+        r.velocity_world = to_eigen(request.twist.linear);
+        r.angular_velocity_world = to_eigen(request.twist.angular);
+        std::string message;
+        response.name = sim_.place(r, message);
+        return response.name + ": " + message;
+      },
+      response);
+  return true;
+}
+
+bool StoneNode::on_remove(RemoveStone::Request& request, RemoveStone::Response& response) {
+  answer(
+      "remove",
+      [&] {
+        std::string message;
+        const std::string name = sim_.remove(request.name, message);
+        return name + ": " + message;
+      },
+      response);
+  return true;
+}
+
+bool StoneNode::on_clear(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response) {
+  answer(
+      "clear", [&] { return sim_.clear(); }, response);
   return true;
 }
 

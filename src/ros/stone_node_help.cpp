@@ -114,6 +114,13 @@ Services (changes take effect at the next physics step, which starts a new segme
                          "world" (default) or "stone"; rigid_body sets L = I w
   ~reset                 std_srvs/Trigger: back to the initial state (ROS time keeps running)
   ~set_state             virtual_go/SetState: pose and twist in the world frame
+  ~place                 virtual_go/PlaceStone (with the board): a stone of `color` at Go
+                         `point` ("A1".."T19"; set down at rest, or dropped from drop_height
+                         m, 0 to )"
+      << kMaxDropHeightM << R"() or at `pose`; answers its name
+                         (black_1, white_1, ...: never reused; also its tf frame)
+  ~remove                virtual_go/RemoveStone: a placed stone by name or by Go point
+  ~clear                 std_srvs/Trigger: removes every placed stone (`stone` stays)
   ~pause                 std_srvs/Empty (as gazebo's pause_physics): no step is taken until
                          ~step or ~unpause; requests wait for the next step
   ~unpause               std_srvs/Empty: run again; following ROS time, the paused interval

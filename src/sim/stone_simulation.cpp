@@ -7,6 +7,7 @@
 #include "virtual_go/common/sim_time.h"
 #include "virtual_go/flight/integrator_registry.h"
 #include "virtual_go/geometry/rotation.h"
+#include "virtual_go/world/stone_placement.h"
 
 namespace virtual_go {
 namespace {
@@ -55,10 +56,10 @@ StoneSimulation::StoneSimulation(CheckedConfig checked)
   if (checked_.world) world_.emplace(*checked_.world, std::vector<RigidBodyState>{}, 0.0);
 }
 
-void StoneSimulation::check_clear_of_board(const std::string& field,
-                                           const RigidBodyState& state) const {
+void StoneSimulation::check_clear_of_board(const std::string& field, const RigidBodyState& state,
+                                           const BoardDistance* board) const {
   if (!world_) return;
-  const BoardContact contact = world_->board_distance().nearest(state);
+  const BoardContact contact = (board ? *board : world_->board_distance()).nearest(state);
   const double tolerance = world_->config().options.time_of_impact.touch_tolerance_m;
   if (contact.lens.gap_m < -tolerance) {
     throw InvalidArgument(field, field + ": the stone would overlap the " +
@@ -84,9 +85,10 @@ SegmentEvent StoneSimulation::segment_event(const WorldEvent& event) const {
   split_world_time(event.time_s, out.stamp_ns, out.time_offset_s);
   out.reason = event_reason(event.kind);
   out.detail = world_event_detail_name(event.detail);
-  out.stone = stone_name(event.stone);
+  out.stone = name_of(event.id);
+  if (event.other) out.other_stone = name_of(*event.other);
   out.state = event.state;
-  out.output = state_output(checked_.setup.model, event.state);  // throws if not finite
+  out.output = state_output(model_of(event.id), event.state);  // throws if not finite
   return out;
 }
 
@@ -96,10 +98,45 @@ const std::string& StoneSimulation::stone_name(std::size_t index) const {
   return checked_.config.stone_frame;
 }
 
+std::string StoneSimulation::name_of(StoneId id) const {
+  if (id == initial_id_) return stone_name(0);
+  for (const PlacedStone& p : placed_) {
+    if (p.id == id) return p.name;
+  }
+  return "";
+}
+
+const MotionModel& StoneSimulation::model_of(StoneId id) const {
+  for (std::size_t k = 0; k < placed_.size(); ++k) {
+    if (placed_[k].id == id) return world_->body_model(body_of_placed_[k]).setup().model;
+  }
+  return checked_.setup.model;
+}
+
+void StoneSimulation::reset_world(const RigidBodyState& state, double t_s) {
+  // World::reset keeps only stones of the config's body: the placed stones are added back where
+  // they are, at rest if they rested (a stone set down flat on the board rests at once).
+  std::vector<RigidBodyState> placed_states;
+  for (const PlacedStone& p : placed_) placed_states.push_back(world_->state(p.id));
+  world_->reset({state}, t_s);
+  initial_id_ = world_->id(0);
+  // Their events at t_s (a resting stone re-added rests at once) are not reported: the stones
+  // only go on, on the new time line.
+  std::vector<WorldEvent> ignored;
+  for (std::size_t k = 0; k < placed_.size(); ++k) {
+    placed_[k].id = world_->add_stone(body_of_placed_[k], placed_states[k], t_s, ignored);
+  }
+}
+
 void StoneSimulation::commit_events(std::vector<SegmentEvent>& events, UpdateResult& result) {
   for (SegmentEvent& event : events) {
     if (event.reason != EventReason::start) ++segment_;
     event.segment = segment_;
+    // Rest and the age of the motion (~auto_reset_*) are those of the initial stone.
+    if (event.stone != stone_name(0)) {
+      result.events.push_back(std::move(event));
+      continue;
+    }
     if (event.reason == EventReason::rest) {
       rest_since_ns_ = event.stamp_ns + (event.time_offset_s > 0.0 ? 1 : 0);
     } else {
@@ -115,7 +152,7 @@ void StoneSimulation::restart_world(std::int64_t stamp_ns, UpdateResult& result)
   if (!world_) return;
   epoch_ns_ = stamp_ns;
   rest_since_ns_ = -1;
-  world_->reset({state_}, 0.0);
+  reset_world(state_, 0.0);
   world_events_.clear();
   mid_step_ = false;
   world_->advance_to(0.0, world_events_);
@@ -128,6 +165,11 @@ void StoneSimulation::restart_world(std::int64_t stamp_ns, UpdateResult& result)
 }
 
 std::string StoneSimulation::answer() {
+  if (!board_note_.empty()) {
+    std::string note = std::string(kApplied) + "; note: " + board_note_;
+    board_note_.clear();
+    return note;
+  }
   if (failure_reported_) return kApplied;
   failure_reported_ = true;
   return std::string(kApplied) + "; note: " + failure_ +
@@ -146,6 +188,185 @@ void StoneSimulation::enqueue(Change change) {
                                "use_sim_time, is /clock published?)")));
   }
   pending_.push_back(std::move(change));
+}
+
+void StoneSimulation::require_board(const std::string& request) const {
+  if (!world_ || !world_->config().board_enabled) {
+    throw RequestRefused("refused: " + request +
+                         " needs the board (~board/enabled is false: there is only the stone '" +
+                         stone_name(0) + "')");
+  }
+}
+
+std::string StoneSimulation::place(const PlaceRequest& request, std::string& answer_out) {
+  require_board("~place");
+  const StoneColor color = parse_stone_color(request.color);
+  Change change;
+  change.reason = EventReason::place;
+  change.color = color;
+  if (!request.point.empty()) {
+    if (world_->config().board.lines != kGoLines) {
+      throw InvalidArgument("point", "point: Go points need a board of " +
+                                         std::to_string(kGoLines) + " lines, this one has " +
+                                         std::to_string(world_->config().board.lines) +
+                                         " (give a pose instead)");
+    }
+    change.point = parse_gtp_point(request.point);
+    const double h = request.drop_height_m;
+    if (!std::isfinite(h) || h < 0.0 || h > kMaxDropHeightM) {
+      throw InvalidArgument("drop_height", "drop_height: must be in [0, " +
+                                               format_value(kMaxDropHeightM) + "] m, got " +
+                                               format_value(h));
+    }
+    check_velocity("twist.linear", request.velocity_world, checked_.limits);
+    check_angular_velocity("twist.angular", request.angular_velocity_world, checked_.limits);
+    change.drop_height_m = h;
+    change.velocity_world = request.velocity_world;
+    change.angular_velocity_world = request.angular_velocity_world;
+  } else {
+    // The colour's body is made once, here if not yet (World::color_body): its lens decides
+    // whether the pose overlaps the board.
+    const WorldBodyModel& body = world_->body_model(world_->color_body(color));
+    const Eigen::Vector4d q = request.orientation_xyzw.isZero(0.0)
+                                  ? Eigen::Vector4d(0.0, 0.0, 0.0, 1.0)
+                                  : request.orientation_xyzw;
+    change.state =
+        state_from_request({"pose.position", "pose.orientation", "twist.linear", "twist.angular"},
+                           body.setup().model, request.position_world, q, request.velocity_world,
+                           request.angular_velocity_world, checked_.limits);
+    check_clear_of_board("pose.position", change.state, &body.board());
+  }
+  int& number = next_number_[color == StoneColor::black ? 0 : 1];
+  change.name = stone_color_name(color) + "_" + std::to_string(number);
+  enqueue(change);  // may refuse: the number is taken only once the request is accepted
+  ++number;
+  answer_out = answer();
+  return change.name;
+}
+
+std::string StoneSimulation::remove(const std::string& name_or_point, std::string& answer_out) {
+  require_board("~remove");
+  if (name_or_point == stone_name(0)) {
+    throw InvalidArgument("name", "name: '" + name_or_point +
+                                      "' is the initial stone, which stays (~reset or "
+                                      "~set_state move it)");
+  }
+  std::string name;
+  const auto pending_place = [&](const std::string& n) {
+    return std::any_of(pending_.begin(), pending_.end(), [&](const Change& c) {
+      return c.reason == EventReason::place && c.name == n;
+    });
+  };
+  const auto is_placed = [&](const std::string& n) {
+    return std::any_of(placed_.begin(), placed_.end(),
+                       [&](const PlacedStone& p) { return p.name == n; });
+  };
+  if (is_placed(name_or_point) || pending_place(name_or_point)) {
+    name = name_or_point;
+  } else {
+    GoPoint point;
+    try {
+      point = parse_gtp_point(name_or_point);
+    } catch (const InvalidArgument&) {
+      throw InvalidArgument("name", "name: no stone named '" + name_or_point +
+                                        "' and not a Go point \"A1\" ... \"T19\"");
+    }
+    // A stone waiting to be placed there (the latest), else the placed stone nearest the
+    // intersection among those whose nearest point it is.
+    for (auto it = pending_.rbegin(); it != pending_.rend() && name.empty(); ++it) {
+      if (it->reason == EventReason::place && it->point && *it->point == point) name = it->name;
+    }
+    if (name.empty() && world_->config().board.lines == kGoLines) {
+      const BoardGeometry& board = world_->config().board;
+      const Eigen::Vector3d at = go_point_world(board, point);
+      double best = std::numeric_limits<double>::infinity();
+      for (const PlacedStone& p : placed_) {
+        const Eigen::Vector3d x = world_->state(p.id).position_world;
+        const std::optional<GoPoint> nearest = nearest_go_point(board, x);
+        const double d = (x - at).head<2>().norm();
+        if (nearest && *nearest == point && d < best) {
+          best = d;
+          name = p.name;
+        }
+      }
+    }
+    if (name.empty()) {
+      throw InvalidArgument("name", "name: no stone at " + gtp_name(point));
+    }
+  }
+  Change change;
+  change.reason = EventReason::remove;
+  change.name = name;
+  enqueue(change);
+  answer_out = answer();
+  return name;
+}
+
+std::string StoneSimulation::clear() {
+  require_board("~clear");
+  Change change;
+  change.reason = EventReason::clear;
+  enqueue(change);
+  return answer();
+}
+
+void StoneSimulation::apply_board_changes(double t_s, std::int64_t stamp_ns,
+                                          std::vector<SegmentEvent>& events) {
+  World& world = *world_;
+  const auto command_event = [&](EventReason reason, const std::string& name, StoneId id) {
+    SegmentEvent e;
+    e.stamp_ns = stamp_ns;
+    e.reason = reason;
+    e.stone = name;
+    e.state = world.state(id);
+    e.output = state_output(model_of(id), e.state);
+    events.push_back(std::move(e));
+  };
+  const auto remove_placed = [&](std::size_t k, EventReason reason) {
+    command_event(reason, placed_[k].name, placed_[k].id);
+    std::vector<WorldEvent> none;
+    world.remove_stone(placed_[k].id, t_s, none);
+    placed_.erase(placed_.begin() + static_cast<std::ptrdiff_t>(k));
+    body_of_placed_.erase(body_of_placed_.begin() + static_cast<std::ptrdiff_t>(k));
+  };
+  for (const Change& change : pending_) {
+    if (!change.on_board()) continue;
+    if (change.reason == EventReason::clear) {
+      while (!placed_.empty()) remove_placed(0, EventReason::clear);
+      continue;
+    }
+    if (change.reason == EventReason::remove) {
+      for (std::size_t k = 0; k < placed_.size(); ++k) {
+        if (placed_[k].name == change.name) {
+          remove_placed(k, EventReason::remove);
+          break;
+        }
+      }
+      continue;  // removed already (twice asked, or cleared): nothing to do
+    }
+    std::vector<WorldEvent> world_events;
+    StoneId id;
+    try {
+      if (!change.point) {
+        id = world.add_stone(change.color, change.state, t_s, world_events);
+      } else if (change.drop_height_m == 0.0 && change.velocity_world.isZero(0.0) &&
+                 change.angular_velocity_world.isZero(0.0)) {
+        id = set_down_stone(world, change.color, *change.point, t_s, world_events).id;
+      } else {
+        id = drop_stone(world, change.color, *change.point, change.drop_height_m, t_s, world_events,
+                        change.velocity_world, change.angular_velocity_world)
+                 .id;
+      }
+    } catch (const InvalidArgument& e) {
+      // Nothing was added: say so to the next caller rather than hold the simulation.
+      board_note_ = change.name + " was not placed: " + e.what();
+      continue;
+    }
+    placed_.push_back({change.name, change.color, id});
+    body_of_placed_.push_back(world.body_of(id));
+    command_event(EventReason::place, change.name, id);
+    for (const WorldEvent& e : world_events) events.push_back(segment_event(e));
+  }
 }
 
 std::string StoneSimulation::reset() {
@@ -451,6 +672,7 @@ std::vector<StoneSimulation::Applied> StoneSimulation::apply_changes(bool auto_r
     applied.push_back({EventReason::auto_reset, next, {}});
   }
   for (const Change& change : pending_) {
+    if (change.on_board()) continue;  // apply_board_changes
     if (change.replaces_state()) {
       next = change.state;
     } else {
@@ -469,7 +691,7 @@ bool StoneSimulation::step_world(UpdateResult& result, UpdateBudget& budget) {
   const std::int64_t next_ns = clock_.next_time_ns();
   const bool auto_reset = auto_reset_due(next_ns);
   World& world = *world_;
-  if (!mid_step_ && !held_ && !auto_reset && pending_.empty() && world.is_resting(0)) {
+  if (!mid_step_ && !held_ && !auto_reset && pending_.empty() && world.all_resting()) {
     // At rest with nothing due: no work, the state and its outputs stay bit for bit.
     clock_.step();
     return true;
@@ -509,7 +731,7 @@ bool StoneSimulation::step_world(UpdateResult& result, UpdateBudget& budget) {
     world_events_.clear();
     if (held_) {
       // The World may have failed half-way: start it afresh from the replacement.
-      world.reset({next}, t_s);
+      reset_world(next, t_s);
       world.advance_to(t_s, world_events_);
     } else {
       world.set_state(0, next, t_s, world_events_);  // a resting stone wakes first
@@ -521,7 +743,8 @@ bool StoneSimulation::step_world(UpdateResult& result, UpdateBudget& budget) {
     for (SegmentEvent& command : commands) events.push_back(std::move(command));
     for (; i < world_events_.size(); ++i) events.push_back(segment_event(world_events_[i]));
   }
-  const bool moved = !events.empty() || !world.is_resting(0);
+  apply_board_changes(t_s, next_ns, events);
+  const bool moved = !events.empty() || !world.all_resting();
   clock_.step();
   pending_.clear();
   commit_events(events, result);

@@ -19,7 +19,25 @@ std::vector<StoneStateEntry> stone_states(const StoneSimulation& sim) {
   e.mass_kg = stone.mass_properties.mass();
   e.output = sim.output();
   e.resting = sim.resting();
-  return {e};
+  std::vector<StoneStateEntry> entries{e};
+  // The placed stones, from the World (a World exists whenever there are some).
+  for (const PlacedStone& p : sim.placed_stones()) {
+    const World& w = *sim.world();
+    const WorldBody& body = w.body_model(w.body_of(p.id)).body();
+    StoneStateEntry s;
+    s.name = p.name;
+    s.color = stone_color_name(p.color);
+    s.output = state_output(body.model, w.state(p.id));
+    if (world->board.lines == kGoLines) {
+      s.point = nearest_go_point_name(world->board, s.output.position_world);
+    }
+    s.width_m = body.shape.width();
+    s.height_m = body.shape.height();
+    s.mass_kg = body.model.mass_properties().mass();
+    s.resting = w.is_resting(p.id);
+    entries.push_back(std::move(s));
+  }
+  return entries;
 }
 
 bool stone_states_due(const UpdateResult& result, bool all_resting, bool listened) {

@@ -17,6 +17,8 @@
 #include <string>
 #include <vector>
 
+#include "virtual_go/PlaceStone.h"
+#include "virtual_go/RemoveStone.h"
 #include "virtual_go/SetAngularVelocity.h"
 #include "virtual_go/SetState.h"
 #include "virtual_go/StepSimulation.h"
@@ -48,6 +50,9 @@ class StoneNode {
                                SetAngularVelocity::Response& response);
   bool on_reset(std_srvs::Trigger::Request& request, std_srvs::Trigger::Response& response);
   bool on_set_state(SetState::Request& request, SetState::Response& response);
+  bool on_place(PlaceStone::Request& request, PlaceStone::Response& response);
+  bool on_remove(RemoveStone::Request& request, RemoveStone::Response& response);
+  bool on_clear(std_srvs::Trigger::Request& request, std_srvs::Trigger::Response& response);
   bool on_pause(std_srvs::Empty::Request& request, std_srvs::Empty::Response& response);
   bool on_unpause(std_srvs::Empty::Request& request, std_srvs::Empty::Response& response);
   bool on_step(StepSimulation::Request& request, StepSimulation::Response& response);
@@ -65,6 +70,13 @@ class StoneNode {
   ros::ServiceServer set_angular_velocity_srv_;
   ros::ServiceServer reset_srv_;
   ros::ServiceServer set_state_srv_;
+  ros::ServiceServer place_srv_;
+  ros::ServiceServer remove_srv_;
+  ros::ServiceServer clear_srv_;
+  // The simulated time each placed stone's transform last went out (resting ones are re-sent
+  // every kRestingTfPeriodNs, not every tick).
+  static constexpr std::int64_t kRestingTfPeriodNs = 1000000000;
+  std::map<std::string, std::int64_t> tf_sent_ns_;
   ros::ServiceServer pause_srv_;
   ros::ServiceServer unpause_srv_;
   ros::ServiceServer step_srv_;

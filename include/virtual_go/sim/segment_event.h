@@ -17,7 +17,7 @@
 
 namespace virtual_go {
 
-// From outside the physics (start ... time_jump), then, with the board, the World's changes of
+// From outside the physics (start ... clear), then, with the board, the World's changes of
 // regime (world/world_event.h: impact ... wake), then held: a physics step failed and the state
 // is held (detail: the cause) until a reset or set_state replaces it.
 enum class EventReason {
@@ -27,6 +27,9 @@ enum class EventReason {
   set_state,
   set_angular_velocity,
   time_jump,
+  place,   // ~place: a stone added (its first state)
+  remove,  // ~remove: the stone taken away (its last state)
+  clear,   // ~clear: one per stone taken away
   impact,
   slide,
   roll,

@@ -23,7 +23,9 @@
 #include "virtual_go/body/rigid_body.h"
 #include "virtual_go/flight/flight_cache.h"
 #include "virtual_go/flight/integrator.h"
+#include "virtual_go/go/go_point.h"
 #include "virtual_go/go/stone.h"
+#include "virtual_go/go/stone_color.h"
 #include "virtual_go/sim/segment_event.h"
 #include "virtual_go/sim/sim_clock.h"
 #include "virtual_go/sim/state_output.h"
@@ -59,6 +61,29 @@ class RequestRefused : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// Highest ~place drop (m from the board's top face to the stone's lowest point): a stone dropped
+// from 2 m hits the board at 6.3 m/s, beyond any player's hand; higher is a unit mistake.
+constexpr double kMaxDropHeightM = 2.0;
+
+// A ~place request (with the board). Either a Go point (then the position comes from it and
+// drop_height_m, lying flat; twist as given) or, with point empty, a full pose.
+struct PlaceRequest {
+  std::string point;  // "A1" ... "T19", or "" to use the pose
+  std::string color;  // "black" | "white"
+  Eigen::Vector3d position_world = Eigen::Vector3d::Zero();
+  Eigen::Vector4d orientation_xyzw = Eigen::Vector4d::Zero();  // all zeros: lying flat
+  double drop_height_m = 0.0;  // point only: 0 = set down at rest (nudging neighbours)
+  Eigen::Vector3d velocity_world = Eigen::Vector3d::Zero();
+  Eigen::Vector3d angular_velocity_world = Eigen::Vector3d::Zero();
+};
+
+// A stone added by ~place: its name (also its tf frame), colour and World identity.
+struct PlacedStone {
+  std::string name;
+  StoneColor color = StoneColor::black;
+  StoneId id;
+};
+
 class StoneSimulation {
  public:
   // Throws ConfigError naming the parameter.
@@ -92,6 +117,26 @@ class StoneSimulation {
                         const Eigen::Vector4d& orientation_xyzw,
                         const Eigen::Vector3d& velocity_world,
                         const Eigen::Vector3d& angular_velocity_world);
+
+  // Stones on the board (~board/enabled only; without it RequestRefused). The initial stone,
+  // `stone_name(0)`, is the one the requests above address; ~place adds stones named
+  // "<color>_<n>" (n = 1, 2, ... per colour, never reused, also after a remove or clear), the name
+  // reserved and returned at once; the stone appears at the next physics step, as every request.
+  // Errors (InvalidArgument naming the field: "point", "color", "drop_height" (0 ..
+  // kMaxDropHeightM), "pose.position", "pose.orientation", "twist.linear", "twist.angular") change
+  // nothing. A placement the World refuses when it applies (no room to set down without pushing a
+  // stone off the board) adds nothing; the next request's answer says so.
+  // Returns the new name; `answer` gets the answer for the caller.
+  std::string place(const PlaceRequest& request, std::string& answer);
+  // A name ~place answered, or a Go point: the stone whose nearest point it is (one waiting to be
+  // placed there first, else the one nearest that intersection). InvalidArgument ("name") for
+  // `stone_name(0)` (it is not removable), an unknown name or an empty point. Returns the
+  // removed stone's name; `answer` as above.
+  std::string remove(const std::string& name_or_point, std::string& answer);
+  // Removes every placed stone at the next step (the initial stone stays).
+  std::string clear();
+  // The placed stones in the World now, in placement order.
+  const std::vector<PlacedStone>& placed_stones() const { return placed_; }
 
   // Simulation controls. While paused no step is taken however ROS time moves (the state, its
   // stamp and the clock stay as last published; requests queue as ever), except the ticks
@@ -147,11 +192,35 @@ class StoneSimulation {
  private:
   struct Change {
     EventReason reason;
-    RigidBodyState state;   // reset, set_state: the new state
+    RigidBodyState state;   // reset, set_state: the new state; place by pose: the stone's
     Eigen::Vector3d omega;  // set_angular_velocity
     RequestFrame frame = RequestFrame::world;
-    bool replaces_state() const { return reason != EventReason::set_angular_velocity; }
+    // place, remove: the stone's name; place: colour, point (absent: `state`), drop height.
+    std::string name;
+    StoneColor color = StoneColor::black;
+    std::optional<GoPoint> point;
+    double drop_height_m = 0.0;
+    Eigen::Vector3d velocity_world = Eigen::Vector3d::Zero();
+    Eigen::Vector3d angular_velocity_world = Eigen::Vector3d::Zero();
+    bool on_board() const {
+      return reason == EventReason::place || reason == EventReason::remove ||
+             reason == EventReason::clear;
+    }
+    bool replaces_state() const {
+      return reason != EventReason::set_angular_velocity && !on_board();
+    }
   };
+  // ~place / ~remove / ~clear changes due at this step applied to the World at t_s, in order, with
+  // their events (and the World's) appended.
+  void apply_board_changes(double t_s, std::int64_t stamp_ns, std::vector<SegmentEvent>& events);
+  // The World restarted at t_s with the initial stone in `state` and every placed stone where it
+  // is (they get new ids).
+  void reset_world(const RigidBodyState& state, double t_s);
+  void require_board(const std::string& request) const;
+  // The name of the stone with this World id ("" if none).
+  std::string name_of(StoneId id) const;
+  // The motion model of a World stone's body, for its outputs.
+  const MotionModel& model_of(StoneId id) const;
 
   void advance_to(std::int64_t now_ns, UpdateBudget& budget, UpdateResult& result);
   // Takes up to `steps` steps (the first always, the others while the budget lasts); returns how
@@ -180,7 +249,9 @@ class StoneSimulation {
   // The instant of a World time as a stamp (rounded down to a whole ns) and its offset.
   void split_world_time(double t_s, std::int64_t& stamp_ns, double& offset_s) const;
   // Refuses (InvalidArgument naming `field`) a state overlapping the board or the table.
-  void check_clear_of_board(const std::string& field, const RigidBodyState& state) const;
+  // (Of the initial stone's body, or of `board`'s.)
+  void check_clear_of_board(const std::string& field, const RigidBodyState& state,
+                            const BoardDistance* board = nullptr) const;
   bool auto_reset_due(std::int64_t next_ns) const;
   // A change due at the next step replaces the state (reset, set_state, auto reset).
   bool replacement_due() const;
@@ -219,6 +290,11 @@ class StoneSimulation {
   std::int64_t epoch_ns_ = 0;
   std::int64_t rest_since_ns_ = -1;       // first whole ns at rest (the rest event's, rounded up)
   std::vector<WorldEvent> world_events_;  // the events of the step in progress
+  StoneId initial_id_;                    // the initial stone's World id
+  std::vector<PlacedStone> placed_;
+  std::vector<std::size_t> body_of_placed_;  // the World body of each placed_ entry
+  int next_number_[2] = {1, 1};              // the next ~place number per colour (black, white)
+  std::string board_note_;                   // a placement the World refused, for the next answer
   // The World is part-way to the next grid time (a step cut short by the budget); its events
   // so far are in world_events_.
   bool mid_step_ = false;

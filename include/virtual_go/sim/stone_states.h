@@ -28,8 +28,9 @@ struct StoneStateEntry {
   bool resting = false;  // velocities exactly zero, the state frozen bit for bit
 };
 
-// Every stone of the simulation, in its order (today the single stone: named by ~stone_frame,
-// ~stone/color, with the board's Go point). Valid after an update that advanced.
+// Every stone of the simulation: the initial stone (named by ~stone_frame, ~stone/color, with the
+// board's Go point), then the placed stones in placement order. Valid after an update that
+// advanced.
 std::vector<StoneStateEntry> stone_states(const StoneSimulation& sim);
 
 // Whether ~stones goes out after this update (see above): `listened` when it has subscribers.
