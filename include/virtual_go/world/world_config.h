@@ -40,14 +40,18 @@ struct WorldConfig {
   BoardGeometry board;
   ContactMaterial board_material;  // stone on the board (top face, edges, sides)
   ContactMaterial table_material;  // stone on the table
-  double zeno_height_m = 1e-6;     // rebounds lower than this end the bouncing (docs/physics.md,
-                                   // "Impact")
+  // Stone on stone (pair impacts and the island's stone contacts). A placeholder, unmeasured:
+  // contact/material.h's defaults (e = 0.5, mu = 0.3), like the board's; slate on shell is
+  // not measured yet.
+  ContactMaterial stone_material;
+  double zeno_height_m = 1e-6;  // rebounds lower than this end the bouncing (docs/physics.md,
+                                // "Impact")
   WorldOptions options;
 };
 
 // Throws InvalidArgument whose field() names the offending entry: "board/size" (via
-// validate_board), "contact/board/friction", "contact/table/restitution", "contact/zeno_height",
-// "world/contact_search_horizon", "nonsmooth/step_s", "gravity", "inertia" (a rigid body whose
+// validate_board), "contact/board/friction", "contact/table/restitution",
+// "contact/stone/friction", "contact/zeno_height", "world/contact_search_horizon", "nonsmooth/step_s", "gravity", "inertia" (a rigid body whose
 // inertia is not axisymmetric has no closed-form flight).
 void validate_world_config(const WorldConfig& config);
 
