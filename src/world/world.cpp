@@ -264,6 +264,8 @@ void World::flush(std::vector<WorldEvent>& events) {
 
 bool World::advance_stone(std::size_t i, double t_s, long work_limit) {
   if (stones_.record(i).island) return true;  // its island moves it (advance_islands)
+  // Ahead of t_s (it left an island after another island ended the pass earlier): it waits.
+  if (stones_.hot(i).state_time_s > t_s) return true;
   for (;;) {
     StoneHot& h = stones_.hot(i);
     if (h.mode == StoneMode::resting) return true;

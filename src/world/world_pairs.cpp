@@ -20,8 +20,9 @@ namespace {
 
 // A stone in contact (sliding, the fallback, an island) this close (m) to another stone joins
 // one island with it: its motion is not closed form, so the exact time of impact does not
-// apply; the island takes the contact from a gap far below a stone's size. The conservative
-// steps aim at half of it, so they end in a bounded number of passes.
+// apply. It is the island's contact margin: a larger one makes members that the island lets go
+// (no contact within its margin) rejoin at once, again and again. The conservative steps aim at
+// half of it, so they end in a bounded number of passes.
 constexpr double kJoinGapM = 1e-9;
 // A pair contact approaching slower than this (m/s) is touching, not an impact (as the board's).
 constexpr double kPairTouchingSpeedMps = 1e-9;
@@ -168,6 +169,12 @@ World::Interaction World::next_interaction(double t_s) {
           return stones_.hot(k).mode == StoneMode::flight && stones_.record(k).flight.contact() &&
                  stones_.record(k).flight.contact()->time_s <= end;
         };
+        if (hit.hit && !(hit.approach_speed_mps > kPairTouchingSpeedMps) &&
+            hit.approach_speed_mps > -kPairTouchingSpeedMps) {
+          // Touching without approaching (a stone sliding down past a neighbour it touches):
+          // not an interaction in this pass.
+          continue;
+        }
         if (hit.hit && (hit.time_s < end || !(board_by(i) || board_by(j)))) {
           consider(hit.time_s, Interaction::Kind::impact, i, j, &hit);
         } else if (hit.exhausted && !(hit.time_s > time_)) {
@@ -181,7 +188,14 @@ World::Interaction World::next_interaction(double t_s) {
                                                    body_at(j).lens(), lens_pose(hj.state));
       ++counters_.pair_gap_checks;
       if (c.gap_m <= kJoinGapM) {
-        consider(time_, Interaction::Kind::join, i, j, nullptr);
+        // Touching: an island when they approach at the witness points; a pair touching
+        // without approaching (sliding past, resting side by side) is let be for the pass.
+        const Eigen::Vector3d u_i =
+            point_velocity_world(body_at(i).setup().model, hi.state, c.point_a_world);
+        const Eigen::Vector3d u_j =
+            point_velocity_world(body_at(j).setup().model, hj.state, c.point_b_world);
+        if (c.normal_world.dot(u_j - u_i) < -kPairTouchingSpeedMps || c.gap_m < -kJoinGapM)
+          consider(time_, Interaction::Kind::join, i, j, nullptr);
         continue;
       }
       const double rate = point_speed_bound(i, dt) + (is_awake[j] ? point_speed_bound(j, dt) : 0.0);

@@ -22,7 +22,7 @@
 // and t (the per-stone models, as before); (4) resolve there: a pair impact (Stronge, the
 // config's stone_material; both stones get an `impact` naming the other; a resting stone hit
 // gets a `wake` first), or, for a sustained contact (a resting or touching partner, a rebound
-// below the Zeno speed, a stone in contact within 1 um of another), one NonsmoothIsland for the
+// below the Zeno speed, a stone in contact within 1 nm of another), one NonsmoothIsland for the
 // stones involved and the islands they are in. Members leave the island as the single-stone
 // fallback's stone does (flight, plane contact, rest); an island that rests, rests whole.
 // Not exact yet: a flight that begins inside a step (a lift-off, a separation from an island)
@@ -110,8 +110,9 @@ class World {
   // budget is shared among them, and those that went past the stop time of another are taken
   // back and advanced to it again, which costs at most what they had spent.) A budget is split
   // evenly among the stones in contact; each gets at least one step, so every call makes progress
-  // unless a stone is at an instant with several transitions. Throws InvalidArgument for
-  // max_steps < 1 besides the checks above.
+  // unless a stone is at an instant with several transitions. Not bounded yet: the sub-steps of
+  // a stone-stone island (it runs to the pass's end) and the pair searches of a pass beyond the
+  // first unit. Throws InvalidArgument for max_steps < 1 besides the checks above.
   AdvanceResult advance_to(double t_s, std::vector<WorldEvent>& events, const WorkBudget& budget);
 
   // A command: the stone's state becomes `state` at t_s (>= time(); the world is first advanced
