@@ -92,7 +92,7 @@ double World::point_speed_bound(std::size_t i, double dt_s) {
 World::Interaction World::next_interaction(double t_s) {
   Interaction next;
   next.time_s = t_s;
-  if (stones_.size() < 2 || stones_.all_resting()) return next;
+  if (!config_.stone_contact || stones_.size() < 2 || stones_.all_resting()) return next;
   const auto consider = [&](double time_s, Interaction::Kind kind, std::size_t a, std::size_t b,
                             const PairTimeOfImpact* hit) {
     if (time_s < next.time_s || (time_s == next.time_s && kind != Interaction::Kind::none &&

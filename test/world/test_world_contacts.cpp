@@ -55,6 +55,13 @@ double total_energy(const vg::World& w) {
   return e;
 }
 
+// The default world with stone-stone contact on (WorldConfig::stone_contact, off by default).
+vg::WorldConfig contact_config(double restitution = 0.5) {
+  vg::WorldConfig c = config(restitution);
+  c.stone_contact = true;
+  return c;
+}
+
 // Two equal stones in flight, centres at the same height on the x axis, approaching at 1 m/s
 // each: A flat, B standing on its rim with its axis along x, so A's rim meets B's cap apex on
 // the line of centres (a central impact, no rotation, friction does nothing).
@@ -63,7 +70,7 @@ struct HeadOn {
   vg::World world;
   explicit HeadOn(double restitution)
       : world([&] {
-          vg::WorldConfig c = config();
+          vg::WorldConfig c = contact_config();
           c.board_enabled = false;
           c.stone_material.restitution = restitution;
           c.stone_material.friction = 0.0;
@@ -126,7 +133,7 @@ TEST(WorldContacts, HeadOnImpactOfTwoFlightsIsExact) {
 struct Dropped {
   vg::World world;
   StoneId lower, upper;
-  Dropped() : world(config(0.5), std::vector<vg::RigidBodyState>{}, 0.0) {
+  Dropped() : world(contact_config(0.5), std::vector<vg::RigidBodyState>{}, 0.0) {
     std::vector<vg::WorldEvent> events;
     lower = world.add_stone(0, at(Vector3d(0, 0, kC)), 0.0, events);
     upper = world.add_stone(0, at(Vector3d(0.002, 0.001, 0.05)), 0.0, events);
@@ -222,7 +229,7 @@ TEST(WorldContacts, TheSameDropTwiceIsBitwiseTheSame) {
 // A resting row is not touched by a stone that lands and rests elsewhere: only what is hit
 // wakes; the row's stones are never visited.
 TEST(WorldContacts, ARestingRowIsUnaffectedByAStoneRestingElsewhere) {
-  vg::World world(config(0.5), std::vector<vg::RigidBodyState>{}, 0.0);
+  vg::World world(contact_config(0.5), std::vector<vg::RigidBodyState>{}, 0.0);
   std::vector<vg::WorldEvent> events;
   std::vector<StoneId> row;
   for (int k = 0; k < 5; ++k)
@@ -244,7 +251,7 @@ TEST(WorldContacts, ARestingRowIsUnaffectedByAStoneRestingElsewhere) {
 
 // The stone material is validated like the others.
 TEST(WorldContacts, ABadStoneMaterialIsRefusedNamingIt) {
-  vg::WorldConfig c = config();
+  vg::WorldConfig c = contact_config();
   c.stone_material.friction = -1.0;
   try {
     vg::World w(c, at(Vector3d(0, 0, 0.1)), 0.0);
