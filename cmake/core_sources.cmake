@@ -60,4 +60,5 @@ set(VG_CORE_SOURCES
   src/world/stone_table.cpp
   src/world/stone_placement.cpp
   src/world/world.cpp
+  src/world/world_pairs.cpp
   src/world/world_stones.cpp)

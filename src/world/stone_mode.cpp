@@ -9,10 +9,10 @@ constexpr int kModes = 4;
 // kTransitions[from][to], the table of stone_mode.h.
 constexpr bool kTransitions[kModes][kModes] = {
     // to: flight, plane_contact, nonsmooth_contact, resting
-    {true, true, true, false},    // from flight
-    {true, false, true, true},    // from plane_contact
-    {true, true, true, true},     // from nonsmooth_contact
-    {true, false, false, false},  // from resting
+    {true, true, true, false},   // from flight
+    {true, false, true, true},   // from plane_contact
+    {true, true, true, true},    // from nonsmooth_contact
+    {true, false, true, false},  // from resting
 };
 
 int index_of(StoneMode mode) {

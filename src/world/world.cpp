@@ -99,6 +99,7 @@ void World::start_stones(const std::vector<RigidBodyState>& states, double t0_s)
   counters_ = WorldCounters{};
   pending_.clear();
   stones_.clear();
+  islands_.clear();
   // Every stone starts awake (in flight); one placed at rest comes to rest at its first advance.
   for (std::size_t k = 0; k < states.size(); ++k) (void)stones_.add(0);
   for (std::size_t i = 0; i < states.size(); ++i) {
@@ -119,7 +120,7 @@ void World::advance_to(double t_s, std::vector<WorldEvent>& events) {
 
 bool World::is_cheap(std::size_t i, double t_s) const {
   const StoneHot& h = stones_.hot(i);
-  return h.mode == StoneMode::resting ||
+  return h.mode == StoneMode::resting || stones_.record(i).island.has_value() ||
          (h.mode == StoneMode::flight && t_s < h.next_contact_s && t_s <= h.clear_until_s);
 }
 
@@ -147,17 +148,63 @@ AdvanceResult World::advance_to(double t_s, std::vector<WorldEvent>& events,
   ++counters_.advance_calls;
   const long work_start = counters_.work();
   const bool bounded = budget.max_steps != std::numeric_limits<long>::max();
+  bool reached = true;
+  // The pipeline (world.h): stages 1-2 find the earliest interaction, stage 3 steps every awake
+  // stone to it, stage 4 resolves it; until t_s. A world of one stone, or whose awake stones are
+  // far from all others, does one pass.
+  int passes_at_instant = 0;
+  do {
+    ++counters_.stages;
+    const double before = time_;
+    const Interaction next = next_interaction(t_s);  // stages 1 and 2
+    long limit = std::numeric_limits<long>::max();
+    if (bounded) {
+      const long left = budget.max_steps - (counters_.work() - work_start);
+      if (left < 1 && time_ < t_s) {
+        reached = false;
+        break;
+      }
+      limit = counters_.work() + std::max(1L, left);
+    }
+    if (!step_stones(next.time_s, limit, bounded)) {  // stage 3
+      reached = false;
+      break;
+    }
+    if (time_ == next.time_s) resolve_interaction(next);  // stage 4
+    passes_at_instant = time_ == before ? passes_at_instant + 1 : 0;
+    if (passes_at_instant > kMaxTransitionsAtInstant * 4) {
+      // A standoff of stone-stone events at one instant (not expected: every impact removes
+      // energy and a sustained contact goes to an island): step on without stone contact.
+      if (!step_stones(t_s, limit, bounded)) reached = false;
+      break;
+    }
+  } while (time_ < t_s);
+  flush(events);
+  AdvanceResult result;
+  result.reached = reached && time_ == t_s;
+  result.time_s = time_;
+  result.work = counters_.work() - work_start;
+  return result;
+}
+
+bool World::step_stones(double t_s, long work_limit, bool bounded) {
   // The stones whose advance costs more than a flight sample (in contact, or meeting a contact
   // before t_s) go first; the cheap ones are sampled at the end, at the time all reached.
   // Only awake stones are looked at; costly ones in stone order (the order the budget is shared
-  // in does not depend on the history of the awake list).
+  // in does not depend on the history of the awake list). Island members are moved by their
+  // island.
+  // Islands go first: a member that leaves (to flight or plane contact) may meet another stone
+  // at once, so the pass ends where it leaves and the next pass's pair search sees it.
+  double target = t_s;
+  advance_islands(target);
   std::vector<std::size_t> costly;
   for (const std::size_t i : stones_.awake()) {
     ++counters_.stones_visited;
-    if (!is_cheap(i, t_s)) costly.push_back(i);
+    if (!is_cheap(i, target)) costly.push_back(i);
   }
   std::sort(costly.begin(), costly.end());
-  double target = t_s;
+  const long work_start = counters_.work();
+  const long max_steps = work_limit - work_start;
   bool stopped = false;
   // With a budget and several costly stones, each one's state before it is advanced: a stone
   // that went past the stop time of a later one is taken back and advanced to that time again.
@@ -173,7 +220,7 @@ AdvanceResult World::advance_to(double t_s, std::vector<WorldEvent>& events,
       snapshots.push_back(Snapshot{i, stones_.hot(i), stones_.record(i)});
     long limit = std::numeric_limits<long>::max();
     if (bounded) {
-      const long left = std::max(0L, budget.max_steps - (counters_.work() - work_start));
+      const long left = std::max(0L, max_steps - (counters_.work() - work_start));
       const long share = std::max(1L, left / static_cast<long>(costly.size() - k));
       limit = counters_.work() + share;
     }
@@ -202,12 +249,7 @@ AdvanceResult World::advance_to(double t_s, std::vector<WorldEvent>& events,
     if (is_cheap(i, target)) sample_flight(i, target);
   }
   time_ = target;
-  flush(events);
-  AdvanceResult result;
-  result.reached = !stopped;
-  result.time_s = time_;
-  result.work = counters_.work() - work_start;
-  return result;
+  return !stopped;
 }
 
 void World::flush(std::vector<WorldEvent>& events) {
@@ -221,6 +263,9 @@ void World::flush(std::vector<WorldEvent>& events) {
 }
 
 bool World::advance_stone(std::size_t i, double t_s, long work_limit) {
+  if (stones_.record(i).island) return true;  // its island moves it (advance_islands)
+  // Ahead of t_s (it left an island after another island ended the pass earlier): it waits.
+  if (stones_.hot(i).state_time_s > t_s) return true;
   for (;;) {
     StoneHot& h = stones_.hot(i);
     if (h.mode == StoneMode::resting) return true;
@@ -529,6 +574,7 @@ void World::set_state(std::size_t stone, const RigidBodyState& state, double t_s
   check_state("state", bodies_[stones_.body(stone)], state);
   if (t_s > time_) advance_to(t_s, events);
   const RigidBodyState s = state.validated();
+  if (stones_.record(stone).island) dissolve_island(*stones_.record(stone).island, stone);
   if (stones_.hot(stone).mode == StoneMode::resting) {
     emit(stone, t_s, WorldEventKind::wake, WorldEventDetail::wake, s);
   }

@@ -21,6 +21,7 @@ void validate_world_config(const WorldConfig& config) {
   if (config.board_enabled) validate_board("board/size", config.board);
   validate_material("contact/board", config.board_material);
   validate_material("contact/table", config.table_material);
+  validate_material("contact/stone", config.stone_material);
   const double h = config.zeno_height_m;
   if (!(h > 0.0 && h <= kMaxZenoHeightM)) {
     throw InvalidArgument("contact/zeno_height", "contact/zeno_height must be in (0, " +

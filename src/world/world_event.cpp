@@ -37,6 +37,7 @@ const std::vector<std::pair<WorldEventDetail, std::string>>& details() {
       {WorldEventDetail::rest, "rest"},
       {WorldEventDetail::settle, "settle"},
       {WorldEventDetail::wake, "wake"},
+      {WorldEventDetail::stone_contact, "stone_contact"},
   };
   return table;
 }

@@ -94,12 +94,16 @@ void World::remove_stone(StoneId id, double t_s, std::vector<WorldEvent>& events
   (void)index_of(id);
   check_time("removal", t_s);
   if (t_s > time_) advance_to(t_s, events);
-  stones_.erase(index_of(id));
+  const std::size_t i = index_of(id);
+  if (stones_.record(i).island) dissolve_island(*stones_.record(i).island, i);
+  flush(events);  // before the indices after it shift
+  stones_.erase(i);
 }
 
 void World::clear(double t_s) {
   check_time("clear", t_s);
   stones_.clear();
+  islands_.clear();
   pending_.clear();
   time_ = t_s;
 }

@@ -203,8 +203,8 @@ TEST(StonePlacement, ADroppedStoneBouncesVerticallyAndRestsAtItsPoint) {
   EXPECT_NEAR(s.position_world.y(), p.y(), 1e-12);
   EXPECT_NEAR(s.position_world.z(), kHalfHeight, 1e-12);
 
-  // Onto the occupied point: allowed (physics, not rules); it passes through the resting stone
-  // while stones do not interact (issue 15).
+  // Onto the occupied point: allowed (physics, not rules); it lands on the resting stone
+  // (test_world_contacts checks that landing).
   const vg::PlacementResult second = vg::drop_stone(world, StoneColor::black, d4, 0.02, t, events);
   EXPECT_TRUE(world.contains(second.id));
   EXPECT_EQ(world.stone_count(), 2u);

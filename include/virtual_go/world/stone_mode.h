@@ -19,9 +19,10 @@ enum class StoneMode {
 };
 
 // The table of transitions (from -> to: causes):
-//   flight            -> flight: an impact that rebounds; a command (set_state)
+//   flight            -> flight: an impact that rebounds (board or stone); a command (set_state)
 //                     -> plane_contact: a Zeno impact or a touching start on the face or table
-//                     -> nonsmooth_contact: a contact on an edge, corner or side; a search that
+//                     -> nonsmooth_contact: a contact on an edge, corner or side; a sustained
+//                        stone-stone contact (an island); a search that
 //                        cannot move; a lift-off that was round-off; too many transitions at
 //                        one instant
 //   plane_contact     -> flight: lift-off; a command
@@ -32,6 +33,8 @@ enum class StoneMode {
 //                     -> nonsmooth_contact: restarted (a plane refused the state)
 //                     -> resting: settled
 //   resting           -> flight: a command wakes it
+//                     -> nonsmooth_contact: a stone hits it, or an awake neighbour touches it
+//                        (it joins that stone's island)
 bool is_transition(StoneMode from, StoneMode to);
 // `to` if from -> to is in the table; std::logic_error naming both otherwise.
 StoneMode transition(StoneMode from, StoneMode to);

@@ -43,6 +43,9 @@ struct StoneRecord {
   NonsmoothCounters nonsmooth_seen;
   double transition_time_s = -std::numeric_limits<double>::infinity();
   int transitions_at_instant = 0;
+  // A member of a stone-stone island (World's island list, by key): the island moves it, its
+  // mode is nonsmooth_contact and `nonsmooth` is empty.
+  std::optional<std::size_t> island;
 };
 
 class StoneTable {

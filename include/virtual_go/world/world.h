@@ -11,8 +11,24 @@
 // contact costs its contact model's steps; a resting stone costs nothing: it is not even looked
 // at (the world keeps the list of awake stones, as Box2D v3 keeps its awake set, so a call costs
 // the same with 0 or 361 resting stones), its pose frozen bit for bit, until a command wakes it.
-// Stones do not interact yet (stone-stone contact is later work): each one's events are found on
-// its own, then merged in time order.
+// Stones touch (docs/physics.md, "World", "Stone-stone contact in the world"): advance_to is a
+// pipeline of named stages repeated until t: (1) board search: each flight's board contact is
+// known up to t; (2) pair search: every awake stone against every other stone within the reach
+// its energy allows (a scan, not the broad phase yet): a flight against a flight or a resting
+// stone by the exact pair time of impact (closed form both), any pair with a stone in contact
+// (sliding, fallback, island) conservatively (the gap can close at most at the sum of the point
+// speeds their energies allow); (3) step: every awake stone to the earliest of the first pair
+// contact, the first board contact of a flight near another stone, the conservative safe time
+// and t (the per-stone models, as before); (4) resolve there: a pair impact (Stronge, the
+// config's stone_material; both stones get an `impact` naming the other; a resting stone hit
+// gets a `wake` first), or, for a sustained contact (a resting or touching partner, a rebound
+// below the Zeno speed, a stone in contact within 1 nm of another), one NonsmoothIsland for the
+// stones involved and the islands they are in. Members leave the island as the single-stone
+// fallback's stone does (flight, plane contact, rest); an island that rests, rests whole.
+// Not exact yet: a flight that begins inside a step (a lift-off, a separation from an island)
+// is searched against other stones from the end of that step; a command (set_state, remove)
+// on an island member dissolves its island into single-stone fallbacks (they rejoin at once if
+// they touch). Stones far from each other cost as before.
 //
 // Stones live in a table (world/stone_table.h): each has a StoneId given once and never again,
 // refers to a body (world/world_body.h: its motion model and lens; one body per colour, or the
@@ -27,11 +43,13 @@
 #include <optional>
 #include <vector>
 
+#include "virtual_go/contact/pair_time_of_impact.h"
 #include "virtual_go/contact/plane_contact.h"
 #include "virtual_go/flight/integrator.h"
 #include "virtual_go/go/board_distance.h"
 #include "virtual_go/world/flight_track.h"
 #include "virtual_go/world/nonsmooth_contact.h"
+#include "virtual_go/world/nonsmooth_island.h"
 #include "virtual_go/world/stone_id.h"
 #include "virtual_go/world/stone_mode.h"
 #include "virtual_go/world/stone_table.h"
@@ -92,8 +110,9 @@ class World {
   // budget is shared among them, and those that went past the stop time of another are taken
   // back and advanced to it again, which costs at most what they had spent.) A budget is split
   // evenly among the stones in contact; each gets at least one step, so every call makes progress
-  // unless a stone is at an instant with several transitions. Throws InvalidArgument for
-  // max_steps < 1 besides the checks above.
+  // unless a stone is at an instant with several transitions. Not bounded yet: the sub-steps of
+  // a stone-stone island (it runs to the pass's end) and the pair searches of a pass beyond the
+  // first unit. Throws InvalidArgument for max_steps < 1 besides the checks above.
   AdvanceResult advance_to(double t_s, std::vector<WorldEvent>& events, const WorkBudget& budget);
 
   // A command: the stone's state becomes `state` at t_s (>= time(); the world is first advanced
@@ -212,6 +231,50 @@ class World {
   const ContactMaterial& material_of(const BoardFeature& feature) const;
   void flush(std::vector<WorldEvent>& events);
 
+  // ---- Stone-stone contact (world_pairs.cpp): the pipeline's stages 1, 2 and 4.
+  // What stage 2 found: the time the pass steps to and what happens there.
+  struct Interaction {
+    enum class Kind { none, impact, join };
+    double time_s = 0.0;
+    Kind kind = Kind::none;
+    std::size_t a = 0, b = 0;  // stone indices (impact, join)
+    PairTimeOfImpact hit;      // impact
+  };
+  // One island of touching stones: its members by id (member k of the island), which are still
+  // in it, and the island's counters already added to the world's.
+  struct IslandRun {
+    std::size_t key = 0;
+    NonsmoothIsland island;
+    std::vector<StoneId> members;
+    std::vector<char> in;
+    NonsmoothCounters seen;
+  };
+  // Stage 3: every awake stone to t_s by its own model (the per-stone advance with the work
+  // limit); false when the budget stopped it first (time() is then the stop time).
+  bool step_stones(double t_s, long work_limit, bool bounded);
+  // Stages 1 and 2: the earliest interaction up to t_s (or t_s).
+  Interaction next_interaction(double t_s);
+  void resolve_interaction(const Interaction& next);
+  void collide_pair(std::size_t a, std::size_t b, const PairTimeOfImpact& hit);
+  // Stones a and b (and the islands they are in) become one island at t_s from `states` (or
+  // their present states).
+  void form_island(const std::vector<std::size_t>& seeds, const std::vector<RigidBodyState>& states,
+                   double t_s);
+  // Every island to t_s, each stopping where members leave it; t_s becomes the earliest such
+  // time. (With several islands, one advanced before another stopped earlier stays ahead of
+  // time() by less than a pass; its next advance waits for the world.)
+  void advance_islands(double& t_s);
+  // To t_s or the first lattice time where members leave (returned); they are left there.
+  double advance_island(IslandRun& run, double t_s);
+  // Each member but `except` goes on in its own single-stone fallback.
+  void dissolve_island(std::size_t key, std::size_t except);
+  IslandRun* island_of(std::size_t i);
+  StoneMotion stone_motion(std::size_t i) const;
+  // A bound (m/s) on the speed of every point of the stone over the next dt_s while its energy
+  // (its island's) does not rise: kinetic energy at most the energy above the lowest potential
+  // (the lens lying flat on the table, or on the top face when it cannot leave it in dt_s).
+  double point_speed_bound(std::size_t i, double dt_s);
+
   WorldConfig config_;
   std::vector<WorldBodyModel> bodies_;  // [0]: the config's
   std::optional<std::size_t> color_bodies_[2];
@@ -219,6 +282,8 @@ class World {
   StoneTable stones_;  // only its awake stones are visited by advance_to
   std::vector<WorldEvent> pending_;
   WorldCounters counters_;
+  std::vector<std::unique_ptr<IslandRun>> islands_;
+  std::size_t next_island_key_ = 0;
 };
 
 }  // namespace virtual_go

@@ -40,15 +40,27 @@ struct WorldConfig {
   BoardGeometry board;
   ContactMaterial board_material;  // stone on the board (top face, edges, sides)
   ContactMaterial table_material;  // stone on the table
-  double zeno_height_m = 1e-6;     // rebounds lower than this end the bouncing (docs/physics.md,
-                                   // "Impact")
+  // Stone on stone (pair impacts and the island's stone contacts). A placeholder, unmeasured:
+  // contact/material.h's defaults (e = 0.5, mu = 0.3), like the board's; slate on shell is
+  // not measured yet.
+  ContactMaterial stone_material;
+  // Stones touch each other (pair times of impact, pair impacts, islands: docs/physics.md,
+  // "Stone-stone contact in the world"). Off by default until its cost is bounded: two stones in
+  // plane contact side by side make the conservative pair search take very many tiny passes
+  // (205,480 in the first 3 s of a drop onto a resting stone), and neither the island's sub-steps
+  // nor the extra pair searches count against a WorkBudget yet. Off, stones pass through each
+  // other as before (the node and placement rely on this).
+  bool stone_contact = false;
+  double zeno_height_m = 1e-6;  // rebounds lower than this end the bouncing (docs/physics.md,
+                                // "Impact")
   WorldOptions options;
 };
 
 // Throws InvalidArgument whose field() names the offending entry: "board/size" (via
-// validate_board), "contact/board/friction", "contact/table/restitution", "contact/zeno_height",
-// "world/contact_search_horizon", "nonsmooth/step_s", "gravity", "inertia" (a rigid body whose
-// inertia is not axisymmetric has no closed-form flight).
+// validate_board), "contact/board/friction", "contact/table/restitution",
+// "contact/stone/friction", "contact/zeno_height", "world/contact_search_horizon",
+// "nonsmooth/step_s", "gravity", "inertia" (a rigid body whose inertia is not axisymmetric has no
+// closed-form flight).
 void validate_world_config(const WorldConfig& config);
 
 }  // namespace virtual_go

@@ -17,6 +17,12 @@ struct WorldCounters {
   long nonsmooth_steps = 0;       // committed sub-steps of the fallback
   long nonsmooth_impulses = 0;    // plastic impulses of the fallback
   long events = 0;                // events reported
+  long pair_searches = 0;         // stone-stone times of impact (pair_time_of_impact)
+  long pair_search_steps = 0;     // their advancement and polishing steps
+  long pair_gap_checks = 0;       // conservative stone-stone distances (a stone in contact)
+  long pair_impacts = 0;          // stone-stone impacts resolved (of `impacts`)
+  long islands_formed = 0;        // stone-stone islands formed (NonsmoothIsland)
+  long stages = 0;                // pipeline passes of advance_to (world.h)
   // Stones advance_to looked at: the awake ones (flight or contact), one visit each per call. A
   // resting stone is never visited, so a resting board adds nothing here (issue 15: O(1) in
   // resting stones).
@@ -26,7 +32,8 @@ struct WorldCounters {
   // Flight samples are not counted: one per flying stone per call, in closed form.
   long work() const {
     return contact_searches + contact_search_steps + impacts + impact_slip_steps +
-           plane_contact_steps + nonsmooth_steps;
+           plane_contact_steps + nonsmooth_steps + pair_searches + pair_search_steps +
+           pair_gap_checks;
   }
 };
 

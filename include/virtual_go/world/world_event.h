@@ -54,14 +54,17 @@ enum class WorldEventDetail {
   rest,        // exact rest in a plane contact
   settle,      // the fallback came to rest (by its threshold: see NonsmoothContactOptions)
   wake,
+  stone_contact,  // a stone-stone contact taken by the island fallback (sustained, or a stone
+                  // in contact touching another): the stone is a member of an island
 };
 
 struct WorldEvent {
   double time_s = 0.0;    // world time line, s
   std::size_t stone = 0;  // the stone's index when the event was handed out
   StoneId id;             // the stone's identity (stable while stones come and go)
-  // The other stone of a stone-stone contact (none: the board, the table or no contact). Not
-  // set yet: stones do not interact yet (issue 15).
+  // The other stone of a stone-stone contact (none: the board, the table or no contact): set on
+  // both stones' `impact` events of a pair impact, on the `wake` of a stone that was hit, and
+  // on the `slide`/stone_contact event of a stone entering an island (the stone it touched).
   std::optional<StoneId> other;
   WorldEventKind kind = WorldEventKind::impact;
   WorldEventDetail detail = WorldEventDetail::impact;

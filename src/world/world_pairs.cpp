@@ -1,0 +1,417 @@
+// The World's stone-stone contact (docs/physics.md, "World", "Stone-stone contact in the world"):
+// stages 1, 2 and 4 of advance_to's pipeline (world.h) and the islands of touching stones. The
+// per-stone models (flight, board contact, plane contact, the single-stone fallback) are in
+// world.cpp.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <utility>
+
+#include "virtual_go/body/rigid_body.h"
+#include "virtual_go/contact/impact.h"
+#include "virtual_go/contact/pair_impact.h"
+#include "virtual_go/geometry/lens_pair_distance.h"
+#include "virtual_go/world/broad_phase.h"
+#include "virtual_go/world/world.h"
+
+namespace virtual_go {
+namespace {
+
+// A stone in contact (sliding, the fallback, an island) this close (m) to another stone joins
+// one island with it: its motion is not closed form, so the exact time of impact does not
+// apply. It is the island's contact margin: a larger one makes members that the island lets go
+// (no contact within its margin) rejoin at once, again and again. The conservative steps aim at
+// half of it, so they end in a bounded number of passes.
+constexpr double kJoinGapM = 1e-9;
+// A pair contact approaching slower than this (m/s) is touching, not an impact (as the board's).
+constexpr double kPairTouchingSpeedMps = 1e-9;
+
+}  // namespace
+
+StoneMotion World::stone_motion(std::size_t i) const {
+  const StoneHot& h = stones_.hot(i);
+  const StoneRecord& r = stones_.record(i);
+  const WorldBodyModel& body = body_at(i);
+  if (h.mode == StoneMode::flight) {
+    return StoneMotion{body.lens(), body.setup(), r.flight.anchor(), r.flight.anchor_time_s(),
+                       false};
+  }
+  return StoneMotion{body.lens(), body.setup(), h.state, h.state_time_s, true};
+}
+
+World::IslandRun* World::island_of(std::size_t i) {
+  const std::optional<std::size_t>& key = stones_.record(i).island;
+  if (!key) return nullptr;
+  for (const std::unique_ptr<IslandRun>& run : islands_) {
+    if (run->key == *key) return run.get();
+  }
+  return nullptr;
+}
+
+double World::point_speed_bound(std::size_t i, double dt_s) {
+  // Kinetic energy <= energy - the lowest potential: a lens lies at least its half thickness c
+  // (its smallest reach) above whatever supports it, the table, or the top face while it cannot
+  // leave the face within dt_s even at the table floor's speed bound (gravity taken vertical, as
+  // the world's is). Energy never rises in any model, so the bound holds for the whole pass; an
+  // island's members may trade energy, so a member gets the island's.
+  const auto speed = [&](std::size_t k, double kinetic_j) {
+    const MassProperties& mass = body_at(k).setup().model.mass_properties();
+    const double smallest_moment = mass.principal_moments_body().minCoeff();
+    // Every surface point lies within the rim radius a of the centre: |u| <= |v| + a |omega|.
+    return std::sqrt(2.0 * kinetic_j / mass.mass()) +
+           body_at(k).lens().half_width() * std::sqrt(2.0 * kinetic_j / smallest_moment);
+  };
+  const auto room = [&](std::size_t k) {
+    const MotionSetup& setup = body_at(k).setup();
+    const LensGeometry& lens = body_at(k).lens();
+    const double m = setup.model.mass_properties().mass();
+    const double thickness_half = lens.sphere_radius() - lens.sphere_offset();
+    const auto above = [&](double floor_z) {
+      return std::max(0.0, energy(k) + m * setup.gravity_world.z() * (floor_z + thickness_half));
+    };
+    const double on_table = above(config_.board.table_z_m());
+    const Eigen::Vector3d& x = stones_.hot(k).state.position_world;
+    const double inside_m = std::min(0.5 * config_.board.size_x_m - std::abs(x.x()),
+                                     0.5 * config_.board.size_y_m - std::abs(x.y()));
+    const double reach_m = lens.half_width() + speed(k, on_table) * dt_s;
+    return x.z() >= config_.board.top_z_m() && inside_m > reach_m ? above(config_.board.top_z_m())
+                                                                  : on_table;
+  };
+  double kinetic_j = 0.0;
+  if (IslandRun* run = island_of(i)) {
+    for (std::size_t k = 0; k < run->members.size(); ++k) {
+      if (run->in[k]) kinetic_j += room(index_of(run->members[k]));
+    }
+  } else {
+    kinetic_j = room(i);
+  }
+  return speed(i, kinetic_j);
+}
+
+World::Interaction World::next_interaction(double t_s) {
+  Interaction next;
+  next.time_s = t_s;
+  if (!config_.stone_contact || stones_.size() < 2 || stones_.all_resting()) return next;
+  const auto consider = [&](double time_s, Interaction::Kind kind, std::size_t a, std::size_t b,
+                            const PairTimeOfImpact* hit) {
+    if (time_s < next.time_s || (time_s == next.time_s && kind != Interaction::Kind::none &&
+                                 next.kind == Interaction::Kind::none)) {
+      next.time_s = time_s;
+      next.kind = kind;
+      next.a = a;
+      next.b = b;
+      if (hit) next.hit = *hit;
+    }
+  };
+  std::vector<std::size_t> awake(stones_.awake().begin(), stones_.awake().end());
+  std::sort(awake.begin(), awake.end());
+  const double dt = t_s - time_;
+
+  // Stage 1, board search: each flight's board contact up to t_s (as advance_flight does); the
+  // flight is closed form up to there. The pass stops at it: the flight after the bounce is
+  // searched against the other stones in the next pass.
+  std::vector<double> flight_end(stones_.size(), t_s);
+  std::vector<Bounds> bounds(stones_.size());
+  for (const std::size_t i : awake) {
+    StoneHot& h = stones_.hot(i);
+    StoneRecord& r = stones_.record(i);
+    const double rim_m = body_at(i).lens().half_width();
+    if (h.mode == StoneMode::flight) {
+      if (config_.board_enabled) {
+        while (!r.flight.contact() && r.flight.clear_until_s() < t_s) {
+          const double from = r.flight.clear_until_s();
+          const TimeOfImpact found =
+              search(i, from, std::max(t_s, from + config_.options.contact_search_horizon_s));
+          if (!found.hit && !(found.time_s > from)) break;  // advance_flight hands it over
+        }
+        if (r.flight.contact()) flight_end[i] = std::min(t_s, r.flight.contact()->time_s);
+        if (r.flight.clear_until_s() < flight_end[i] && !r.flight.contact())
+          flight_end[i] = std::max(time_, r.flight.clear_until_s());
+      }
+      consider(flight_end[i], Interaction::Kind::none, 0, 0, nullptr);
+      bounds[i] = swept_bounds(h.state.position_world, h.state.velocity_world,
+                               body_at(i).setup().gravity_world,
+                               std::max(0.0, flight_end[i] - time_), rim_m);
+    } else {
+      bounds[i] = sphere_bounds(h.state.position_world, rim_m + point_speed_bound(i, dt) * dt);
+    }
+  }
+
+  // Stage 2, pair search: every awake stone against every other stone whose bounds meet its
+  // own (a scan; each pair once). Closed-form motions both: the exact time of impact. A stone
+  // in contact: the gap closes at most at the sum of the point speed bounds.
+  std::vector<char> is_awake(stones_.size(), 0);
+  for (const std::size_t i : awake) is_awake[i] = 1;
+  for (const std::size_t i : awake) {
+    for (std::size_t j = 0; j < stones_.size(); ++j) {
+      if (j == i || (is_awake[j] && j < i)) continue;
+      const StoneRecord& ri = stones_.record(i);
+      const StoneRecord& rj = stones_.record(j);
+      if (ri.island && rj.island && *ri.island == *rj.island) continue;
+      const StoneHot& hi = stones_.hot(i);
+      const StoneHot& hj = stones_.hot(j);
+      const Bounds bj =
+          is_awake[j] ? bounds[j]
+                      : sphere_bounds(hj.state.position_world, body_at(j).lens().half_width());
+      if (!bounds[i].overlaps(bj)) continue;
+      const bool closed_i = hi.mode == StoneMode::flight;
+      const bool closed_j = hj.mode == StoneMode::flight || hj.mode == StoneMode::resting;
+      if (closed_i && closed_j) {
+        const double end = std::min(flight_end[i], flight_end[j]);
+        const PairTimeOfImpact hit =
+            pair_time_of_impact(stone_motion(i), stone_motion(j), time_, end);
+        ++counters_.pair_searches;
+        counters_.pair_search_steps += hit.advancement_steps + hit.polish_steps;
+        // A hit at the instant a member meets the board is left to the next pass (the board
+        // contact comes first there).
+        const auto board_by = [&](std::size_t k) {
+          return stones_.hot(k).mode == StoneMode::flight && stones_.record(k).flight.contact() &&
+                 stones_.record(k).flight.contact()->time_s <= end;
+        };
+        if (hit.hit && !(hit.approach_speed_mps > kPairTouchingSpeedMps) &&
+            hit.approach_speed_mps > -kPairTouchingSpeedMps) {
+          // Touching without approaching (a stone sliding down past a neighbour it touches):
+          // not an interaction in this pass.
+          continue;
+        }
+        if (hit.hit && (hit.time_s < end || !(board_by(i) || board_by(j)))) {
+          consider(hit.time_s, Interaction::Kind::impact, i, j, &hit);
+        } else if (hit.exhausted && !(hit.time_s > time_)) {
+          consider(time_, Interaction::Kind::join, i, j, nullptr);  // no progress: the island
+        } else if (hit.exhausted) {
+          consider(hit.time_s, Interaction::Kind::none, 0, 0, nullptr);
+        }
+        continue;
+      }
+      const LensPairContact c = lens_pair_distance(body_at(i).lens(), lens_pose(hi.state),
+                                                   body_at(j).lens(), lens_pose(hj.state));
+      ++counters_.pair_gap_checks;
+      if (c.gap_m <= kJoinGapM) {
+        // Touching: an island when they approach at the witness points; a pair touching
+        // without approaching (sliding past, resting side by side) is let be for the pass.
+        const Eigen::Vector3d u_i =
+            point_velocity_world(body_at(i).setup().model, hi.state, c.point_a_world);
+        const Eigen::Vector3d u_j =
+            point_velocity_world(body_at(j).setup().model, hj.state, c.point_b_world);
+        if (c.normal_world.dot(u_j - u_i) < -kPairTouchingSpeedMps || c.gap_m < -kJoinGapM)
+          consider(time_, Interaction::Kind::join, i, j, nullptr);
+        continue;
+      }
+      const double rate = point_speed_bound(i, dt) + (is_awake[j] ? point_speed_bound(j, dt) : 0.0);
+      if (rate > 0.0) {
+        consider(time_ + (c.gap_m - 0.5 * kJoinGapM) / rate, Interaction::Kind::none, 0, 0,
+                 nullptr);
+      }
+    }
+  }
+  return next;
+}
+
+void World::resolve_interaction(const Interaction& next) {
+  switch (next.kind) {
+    case Interaction::Kind::none:
+      return;
+    case Interaction::Kind::impact:
+      collide_pair(next.a, next.b, next.hit);
+      return;
+    case Interaction::Kind::join:
+      form_island({next.a, next.b}, {}, time_);
+      return;
+  }
+}
+
+void World::collide_pair(std::size_t a, std::size_t b, const PairTimeOfImpact& hit) {
+  const double t = hit.time_s;
+  const bool a_rests = stones_.hot(a).mode == StoneMode::resting;
+  const bool b_rests = stones_.hot(b).mode == StoneMode::resting;
+  if (a_rests)
+    emit(a, t, WorldEventKind::wake, WorldEventDetail::wake, hit.state_a).other = stones_.id(b);
+  if (b_rests)
+    emit(b, t, WorldEventKind::wake, WorldEventDetail::wake, hit.state_b).other = stones_.id(a);
+  if (!(hit.approach_speed_mps > kPairTouchingSpeedMps)) {
+    // Touching (or overlapping within the tolerance) without an approach: sustained.
+    form_island({a, b}, {hit.state_a, hit.state_b}, t);
+    return;
+  }
+  ImpactOptions options;
+  options.zeno_height_m = config_.zeno_height_m;
+  const Eigen::Vector3d point_world = 0.5 * (hit.contact.point_a_world + hit.contact.point_b_world);
+  const PairImpact p = resolve_pair_impact(
+      body_at(a).setup().model, hit.state_a, body_at(b).setup().model, hit.state_b, point_world,
+      hit.contact.normal_world, config_.stone_material, options);
+  ++counters_.impacts;
+  ++counters_.pair_impacts;
+  counters_.impact_slip_steps += p.slip_steps;
+  if (p.frictionless_fallback) ++counters_.impact_fallbacks;
+  const auto impact_event = [&](std::size_t i, std::size_t other, const RigidBodyState& state,
+                                LensPart part) {
+    WorldEvent& e = emit(i, t, WorldEventKind::impact, WorldEventDetail::impact, state);
+    e.other = stones_.id(other);
+    e.part = part;
+    e.energy_change_j = p.energy_change_j;  // the pair's, on both events
+    e.approach_speed_mps = -p.normal_velocity_before_mps;
+    e.rebound_speed_mps = p.normal_velocity_after_mps;
+  };
+  impact_event(a, b, p.state_a, hit.contact.part_a);
+  impact_event(b, a, p.state_b, hit.contact.part_b);
+  // A rebound below the Zeno rule's speed (docs/physics.md, "Impact"), or a partner that was
+  // resting (held by the board, which this two-body impact leaves out): the contact is
+  // sustained, the island takes it.
+  const double zeno_speed_mps =
+      std::sqrt(2.0 * config_.motion.gravity_world.norm() * config_.zeno_height_m);
+  const bool sustained = config_.board_enabled &&
+                         (a_rests || b_rests || !(p.normal_velocity_after_mps > zeno_speed_mps));
+  if (sustained) {
+    form_island({a, b}, {p.state_a, p.state_b}, t);
+    return;
+  }
+  begin_flight(a, p.state_a, t, false);
+  begin_flight(b, p.state_b, t, false);
+}
+
+void World::form_island(const std::vector<std::size_t>& seeds,
+                        const std::vector<RigidBodyState>& states, double t_s) {
+  std::vector<std::size_t> members;
+  std::vector<RigidBodyState> initial;
+  const auto add = [&](std::size_t i, const RigidBodyState& s) {
+    if (std::find(members.begin(), members.end(), i) != members.end()) return;
+    members.push_back(i);
+    initial.push_back(s);
+  };
+  for (std::size_t k = 0; k < seeds.size(); ++k) {
+    const std::size_t seed = seeds[k];
+    if (IslandRun* run = island_of(seed)) {
+      // Its island joins whole, from the members' present states.
+      for (std::size_t m = 0; m < run->members.size(); ++m) {
+        if (!run->in[m]) continue;
+        const std::size_t i = index_of(run->members[m]);
+        stones_.record(i).island.reset();
+        add(i, stones_.hot(i).state);
+      }
+      const std::size_t key = run->key;
+      islands_.erase(
+          std::remove_if(islands_.begin(), islands_.end(),
+                         [&](const std::unique_ptr<IslandRun>& r) { return r->key == key; }),
+          islands_.end());
+    } else {
+      add(seed, states.empty() ? stones_.hot(seed).state : states[k]);
+    }
+  }
+  std::vector<IslandBody> bodies;
+  std::vector<StoneId> ids;
+  for (std::size_t k = 0; k < members.size(); ++k) {
+    bodies.push_back(
+        IslandBody{body_at(members[k]).board(), body_at(members[k]).setup(), initial[k]});
+    ids.push_back(stones_.id(members[k]));
+  }
+  auto run = std::make_unique<IslandRun>(
+      IslandRun{next_island_key_++,
+                NonsmoothIsland(std::move(bodies), config_.board_material, config_.table_material,
+                                config_.stone_material, t_s, config_.options.nonsmooth),
+                ids, std::vector<char>(members.size(), 1), NonsmoothCounters{}});
+  ++counters_.islands_formed;
+  for (std::size_t k = 0; k < members.size(); ++k) {
+    const std::size_t i = members[k];
+    StoneHot& h = stones_.hot(i);
+    StoneRecord& r = stones_.record(i);
+    if (r.plane) {
+      sync_plane_counters(i);
+      r.plane.reset();
+    }
+    if (r.nonsmooth) {
+      sync_nonsmooth_counters(i);
+      r.nonsmooth.reset();
+    }
+    const std::size_t partner = members[k == 0 && members.size() > 1 ? 1 : 0];
+    // A resting stone hit by an impact was woken by it; one touched by a stone in contact is
+    // woken here.
+    if (h.mode == StoneMode::resting && states.empty()) {
+      emit(i, t_s, WorldEventKind::wake, WorldEventDetail::wake, h.state).other =
+          stones_.id(partner);
+    }
+    stones_.set_mode(i, StoneMode::nonsmooth_contact);
+    h.state = run->island.lattice_state(k);
+    h.state_time_s = t_s;
+    r.island = run->key;
+    WorldEvent& e = emit(i, t_s, WorldEventKind::slide, WorldEventDetail::stone_contact, h.state);
+    if (partner != i) e.other = stones_.id(partner);
+  }
+  islands_.push_back(std::move(run));
+}
+
+void World::advance_islands(double& t_s) {
+  // By key order (the order they were formed): deterministic.
+  for (std::size_t k = 0; k < islands_.size(); ++k) {
+    IslandRun& run = *islands_[k];
+    const auto first = std::find(run.in.begin(), run.in.end(), 1);
+    if (first == run.in.end()) continue;
+    const std::size_t any = index_of(run.members[static_cast<std::size_t>(first - run.in.begin())]);
+    if (!(stones_.hot(any).state_time_s < t_s)) continue;  // ahead already (see world.h)
+    t_s = std::min(t_s, advance_island(run, t_s));
+  }
+  islands_.erase(std::remove_if(islands_.begin(), islands_.end(),
+                                [](const std::unique_ptr<IslandRun>& r) {
+                                  return std::find(r->in.begin(), r->in.end(), 1) == r->in.end();
+                                }),
+                 islands_.end());
+}
+
+double World::advance_island(IslandRun& run, double t_s) {
+  for (;;) {
+    const IslandOutcome o = run.island.advance(t_s);
+    const NonsmoothCounters& c = run.island.counters();
+    counters_.nonsmooth_steps += c.steps - run.seen.steps;
+    counters_.nonsmooth_impulses += c.impulses - run.seen.impulses;
+    counters_.contact_searches += c.separation_searches - run.seen.separation_searches;
+    run.seen = c;
+    for (std::size_t m = 0; m < run.members.size(); ++m) {
+      if (!run.in[m]) continue;
+      StoneHot& h = stones_.hot(index_of(run.members[m]));
+      h.state = o.states[m];
+      h.state_time_s = o.time_s;
+    }
+    // Members leave as the single-stone fallback's stone does (advance_nonsmooth).
+    for (const IslandMemberEnd& end : o.left) {
+      run.in[end.member] = 0;
+      const std::size_t i = index_of(run.members[end.member]);
+      stones_.record(i).island.reset();
+      const RigidBodyState& s = o.states[end.member];
+      switch (end.end) {
+        case NonsmoothEnd::separated:
+          emit(i, o.time_s, WorldEventKind::lift_off, WorldEventDetail::separation, s);
+          begin_flight(i, s, o.time_s, false);
+          break;
+        case NonsmoothEnd::plane:
+          enter_sustained(i, s, o.time_s, end.contact);
+          break;
+        case NonsmoothEnd::rest:
+        case NonsmoothEnd::none:
+          come_to_rest(i, s, o.time_s, WorldEventDetail::settle);
+          break;
+      }
+    }
+    if (!o.left.empty() || o.finished || !(o.time_s < t_s)) return o.time_s;
+  }
+}
+
+void World::dissolve_island(std::size_t key, std::size_t except) {
+  // A command on a member: the others go on each in its own fallback (the island of one); they
+  // rejoin at the next pass where they touch.
+  for (std::size_t k = 0; k < islands_.size(); ++k) {
+    IslandRun& run = *islands_[k];
+    if (run.key != key) continue;
+    for (std::size_t m = 0; m < run.members.size(); ++m) {
+      if (!run.in[m]) continue;
+      const std::size_t i = index_of(run.members[m]);
+      stones_.record(i).island.reset();
+      if (i == except) continue;  // the commanded stone: the command gives its state
+      start_nonsmooth(i, stones_.hot(i).state, stones_.hot(i).state_time_s,
+                      WorldEventDetail::stone_contact, nullptr);
+    }
+    islands_.erase(islands_.begin() + static_cast<std::ptrdiff_t>(k));
+    return;
+  }
+}
+
+}  // namespace virtual_go
