@@ -43,10 +43,15 @@ UpdateSummary UpdateStats::take(std::int64_t wall_ns) {
 
 DiagnosticReport diagnostic_report(const StoneSimulation& sim, const UpdateSummary& summary) {
   DiagnosticReport r;
-  // One stone today; the counts keep their meaning when there are more.
-  const int resting = sim.resting() ? 1 : 0;
+  // With the board every stone, the initial one and those ~place added, is in the World; without
+  // it there is the one stone, which never rests.
+  std::size_t stones = 1, resting = 0;
+  if (const World* world = sim.world()) {
+    stones = world->stone_count();
+    for (std::size_t i = 0; i < stones; ++i) resting += world->is_resting(i) ? 1 : 0;
+  }
   r.values = {
-      {"stones awake", std::to_string(1 - resting)},
+      {"stones awake", std::to_string(stones - resting)},
       {"stones resting", std::to_string(resting)},
       {"events per s", format_value(summary.events_per_s)},
       {"step cost mean (ms)", format_value(1e3 * summary.step_cost_mean_s)},
@@ -72,7 +77,9 @@ DiagnosticReport diagnostic_report(const StoneSimulation& sim, const UpdateSumma
   } else if (!sim.started()) {
     r.message = "waiting for a valid ROS time";
   } else {
-    r.message = resting ? "running; the stone rests" : "running";
+    r.message = resting < stones ? "running"
+                : stones == 1    ? "running; the stone rests"
+                                 : "running; all " + std::to_string(stones) + " stones rest";
   }
   return r;
 }

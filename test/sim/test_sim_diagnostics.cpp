@@ -125,6 +125,38 @@ TEST(DiagnosticReport, StoneAtRestOnTheBoardCountsAsResting) {
   EXPECT_EQ(r.level, vg::DiagnosticLevel::ok);
 }
 
+// Stones added by ~place count too: awake while they fall, resting once they rest.
+TEST(DiagnosticReport, PlacedStonesAreCounted) {
+  vg::StoneConfig c;
+  c.board_enabled = true;
+  c.auto_reset_period_s = 0.0;
+  const vg::Stone stone = vg::make_stone(c.stone);
+  c.initial_position_world = Eigen::Vector3d(0.0, 0.0, 0.5 * stone.shape.height() + 0.02);
+  vg::StoneSimulation sim(c);
+  sim.update(kStart);
+  std::string answer;
+  vg::PlaceRequest set_down;
+  set_down.point = "D4";
+  set_down.color = "black";
+  (void)sim.place(set_down, answer);
+  vg::PlaceRequest dropped;
+  dropped.point = "Q16";
+  dropped.color = "white";
+  dropped.drop_height_m = 0.01;
+  (void)sim.place(dropped, answer);
+  sim.update(kStart + 16 * kMs);
+  vg::UpdateStats stats(0);
+  const auto falling = values(vg::diagnostic_report(sim, stats.take(0)));
+  // The initial stone and the white one fall; the black one was set down at rest.
+  EXPECT_EQ(falling.at("stones awake"), "2");
+  EXPECT_EQ(falling.at("stones resting"), "1");
+  for (std::int64_t t = kStart; t <= kStart + 2 * kS; t += 16 * kMs) sim.update(t);
+  const vg::DiagnosticReport r = vg::diagnostic_report(sim, stats.take(0));
+  EXPECT_EQ(values(r).at("stones awake"), "0");
+  EXPECT_EQ(values(r).at("stones resting"), "3");
+  EXPECT_EQ(r.message, "running; all 3 stones rest");
+}
+
 TEST(DiagnosticReport, WarnsWhileThePhysicsFallsBehind) {
   vg::StoneSimulation sim{vg::StoneConfig()};
   vg::UpdateStats stats(0);
