@@ -106,13 +106,18 @@ TEST(DiagnosticReport, RunningStoneIsOkWithEveryValue) {
   EXPECT_EQ(v.at("step cost mean (ms)"), "1");
 }
 
-TEST(DiagnosticReport, StoneAtRestOnTheBoardCountsAsResting) {
+// The board scene without auto reset, the stone lying flat 2 cm above the board.
+vg::StoneConfig drop_onto_board() {
   vg::StoneConfig c;
   c.board_enabled = true;
   c.auto_reset_period_s = 0.0;
   const vg::Stone stone = vg::make_stone(c.stone);
   c.initial_position_world = Eigen::Vector3d(0.0, 0.0, 0.5 * stone.shape.height() + 0.02);
-  vg::StoneSimulation sim(c);
+  return c;
+}
+
+TEST(DiagnosticReport, StoneAtRestOnTheBoardCountsAsResting) {
+  vg::StoneSimulation sim(drop_onto_board());
   sim.update(kStart);
   vg::UpdateStats stats(0);
   EXPECT_EQ(values(vg::diagnostic_report(sim, stats.take(0))).at("stones awake"), "1");
@@ -127,12 +132,7 @@ TEST(DiagnosticReport, StoneAtRestOnTheBoardCountsAsResting) {
 
 // Stones added by ~place count too: awake while they fall, resting once they rest.
 TEST(DiagnosticReport, PlacedStonesAreCounted) {
-  vg::StoneConfig c;
-  c.board_enabled = true;
-  c.auto_reset_period_s = 0.0;
-  const vg::Stone stone = vg::make_stone(c.stone);
-  c.initial_position_world = Eigen::Vector3d(0.0, 0.0, 0.5 * stone.shape.height() + 0.02);
-  vg::StoneSimulation sim(c);
+  vg::StoneSimulation sim(drop_onto_board());
   sim.update(kStart);
   std::string answer;
   vg::PlaceRequest set_down;
