@@ -16,7 +16,8 @@ add_library(virtual_go_sim
   src/sim/update_budget.cpp
   src/sim/board_drawing.cpp
   src/sim/sim_diagnostics.cpp
-  src/sim/sim_pacer.cpp)
+  src/sim/sim_pacer.cpp
+  src/sim/click_placement.cpp)
 target_link_libraries(virtual_go_sim PUBLIC virtual_go_core)
 
 add_executable(stone_node

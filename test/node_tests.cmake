@@ -12,6 +12,7 @@ catkin_add_gtest(node_adapter_test
   test/sim/test_stone_simulation_board.cpp
   test/sim/test_stone_simulation_controls.cpp
   test/sim/test_stone_simulation_place.cpp
+  test/sim/test_click_placement.cpp
   test/sim/test_sim_pacer.cpp
   test/sim/test_stone_states.cpp
   test/sim/test_mesh_file.cpp
@@ -56,6 +57,8 @@ add_rostest(test/ros/rviz_smoke.test DEPENDENCIES stone_node)
 
 # README.md, pasted: its commands run as a user types them (test/ros/test_readme_commands.py).
 add_rostest(test/ros/readme_commands.test DEPENDENCIES stone_node bag_report sgf_replay)
+# rviz's Publish Point (/clicked_point) places stones (test/ros/test_stone_node_click.py).
+add_rostest(test/ros/stone_node_click.test DEPENDENCIES stone_node)
 # use_sim_time without /clock: the node says it waits (test/ros/test_stone_node_clock_wait.py).
 add_rostest(test/ros/stone_node_clock_wait.test DEPENDENCIES stone_node)
 

@@ -24,6 +24,9 @@ constexpr double kMarkerPeriodS = 1.0;                 // wall time between repu
 constexpr std::int64_t kClockPatienceNs = 3000000000;  // ROS time still this long: say so
 constexpr double kClockWatchPeriodS = 0.5;             // wall time between looks at the clock
 constexpr double kBehindWarningPeriodS = 5.0;          // at most one "falls behind" warning
+// How long a click in another frame waits for its transform (the node's thread waits with it;
+// the first such click starts the tf listener, whose static transforms come latched at once).
+constexpr double kClickTransformWaitS = 0.5;
 
 std::int64_t steady_ns() {
   return std::chrono::duration_cast<std::chrono::nanoseconds>(
@@ -182,6 +185,8 @@ StoneNode::StoneNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_n
   pause_srv_ = private_nh_.advertiseService("pause", &StoneNode::on_pause, this);
   unpause_srv_ = private_nh_.advertiseService("unpause", &StoneNode::on_unpause, this);
   step_srv_ = private_nh_.advertiseService("step", &StoneNode::on_step, this);
+  // rviz's Publish Point tool publishes on /clicked_point, in its fixed frame.
+  clicked_point_sub_ = nh_.subscribe("clicked_point", 10, &StoneNode::on_clicked_point, this);
 
   if (c.publish_clock) {
     // The node owns the time: a timer on ROS time would wait for the /clock it publishes
@@ -470,6 +475,34 @@ bool StoneNode::on_step(StepSimulation::Request& request, StepSimulation::Respon
   answer(
       "step", [&] { return sim_.step(request.ticks); }, response);
   return true;
+}
+
+void StoneNode::on_clicked_point(const geometry_msgs::PointStamped::ConstPtr& message) {
+  const std::string& world_frame = sim_.config().world_frame;
+  Eigen::Vector3d position_world = to_eigen(message->point);
+  const std::string& frame = message->header.frame_id;
+  if (!frame.empty() && frame != world_frame && frame != "/" + world_frame) {
+    if (!tf_buffer_) {
+      tf_buffer_ = std::make_unique<tf2_ros::Buffer>();
+      tf_listener_ = std::make_unique<tf2_ros::TransformListener>(*tf_buffer_);
+    }
+    try {
+      // The latest transform: a click marks a place on the board, which does not move.
+      const geometry_msgs::TransformStamped t = tf_buffer_->lookupTransform(
+          world_frame, frame, ros::Time(0), ros::Duration(kClickTransformWaitS));
+      position_world = tf2::transformToEigen(t) * position_world;
+    } catch (const tf2::TransformException& e) {
+      ROS_WARN("stone_node: clicked_point in frame %s places nothing: no transform to %s (%s)",
+               cut_user_text(frame).c_str(), world_frame.c_str(), e.what());
+      return;
+    }
+  }
+  const ClickOutcome out = clicks_.click(sim_, position_world);
+  if (out.placed) {
+    ROS_INFO("stone_node: clicked_point: %s", out.message.c_str());
+  } else {
+    ROS_WARN("stone_node: clicked_point: %s", out.message.c_str());
+  }
 }
 
 bool StoneNode::on_set_state(SetState::Request& request, SetState::Response& response) {

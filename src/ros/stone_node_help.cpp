@@ -109,6 +109,12 @@ Published (private names, ~ = the node's name, e.g. /stone):
   /clock               rosgraph_msgs/Clock (only with ~publish_clock): the simulated time of
                        each state published; starts at 1 s, stands while paused
 
+Subscribed:
+  clicked_point        geometry_msgs/PointStamped (rviz's Publish Point tool; another frame
+                       than the world's through tf2): with the board, a stone set down at the
+                       nearest Go point, black, white, black, ...; a click off the board or
+                       onto a stone places nothing and warns
+
 Services (changes take effect at the next physics step, which starts a new segment):
   ~set_angular_velocity  virtual_go/SetAngularVelocity: angular_velocity rad/s, frame
                          "world" (default) or "stone"; rigid_body sets L = I w

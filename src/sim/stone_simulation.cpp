@@ -271,25 +271,7 @@ std::string StoneSimulation::remove(const std::string& name_or_point, std::strin
       throw InvalidArgument("name", "name: no stone named '" + name_or_point +
                                         "' and not a Go point \"A1\" ... \"T19\"");
     }
-    // A stone waiting to be placed there (the latest), else the placed stone nearest the
-    // intersection among those whose nearest point it is.
-    for (auto it = pending_.rbegin(); it != pending_.rend() && name.empty(); ++it) {
-      if (it->reason == EventReason::place && it->point && *it->point == point) name = it->name;
-    }
-    if (name.empty() && world_->config().board.lines == kGoLines) {
-      const BoardGeometry& board = world_->config().board;
-      const Eigen::Vector3d at = go_point_world(board, point);
-      double best = std::numeric_limits<double>::infinity();
-      for (const PlacedStone& p : placed_) {
-        const Eigen::Vector3d x = world_->state(p.id).position_world;
-        const std::optional<GoPoint> nearest = nearest_go_point(board, x);
-        const double d = (x - at).head<2>().norm();
-        if (nearest && *nearest == point && d < best) {
-          best = d;
-          name = p.name;
-        }
-      }
-    }
+    name = placed_stone_at(point);
     if (name.empty()) {
       throw InvalidArgument("name", "name: no stone at " + gtp_name(point));
     }
@@ -299,6 +281,28 @@ std::string StoneSimulation::remove(const std::string& name_or_point, std::strin
   change.name = name;
   enqueue(change);
   answer_out = answer();
+  return name;
+}
+
+std::string StoneSimulation::placed_stone_at(GoPoint point) const {
+  if (!world_) return "";
+  for (auto it = pending_.rbegin(); it != pending_.rend(); ++it) {
+    if (it->reason == EventReason::place && it->point && *it->point == point) return it->name;
+  }
+  if (world_->config().board.lines != kGoLines) return "";
+  const BoardGeometry& board = world_->config().board;
+  const Eigen::Vector3d at = go_point_world(board, point);
+  std::string name;
+  double best = std::numeric_limits<double>::infinity();
+  for (const PlacedStone& p : placed_) {
+    const Eigen::Vector3d x = world_->state(p.id).position_world;
+    const std::optional<GoPoint> nearest = nearest_go_point(board, x);
+    const double d = (x - at).head<2>().norm();
+    if (nearest && *nearest == point && d < best) {
+      best = d;
+      name = p.name;
+    }
+  }
   return name;
 }
 

@@ -24,13 +24,21 @@ long as the following lines need it, until the next `roslaunch` line stops it wi
 - `rosrun virtual_go bag_report ...`: exit 0 (with --strict 0 or 1, as the README says); its
   --csv and --plot files exist;
 - `rosbag info BAG`, `rosbag check BAG`: exit 0; check finds no type that needs a migration;
+- `rosbag record -O BAG ...` stands for another terminal: it keeps running (recording what the
+  following lines do) until a line reads a bag, starts a node or the README ends, which stops it
+  with Ctrl-C; BAG must then exist;
+- `rosrun virtual_go sgf_replay GAME ...` (not --help): exit 0 within GAME_TIMEOUT_S, and it says
+  it replayed the game;
+- `rostopic pub ... /clicked_point ...` (rviz's Publish Point, typed): exit 0, and within a
+  second a `place` segment of a new placed stone;
 - `source FILE`: the file exists (the test itself runs in that environment).
 
 `roslaunch` lines of other blocks (lists of variants, some with rviz) are loaded with
 `roslaunch --nodes`: the package, the launch file, its arguments and files must resolve.
 A bash line of another kind fails the test: every command the README gives is checked.
 
-The README must keep showing: both --help lines, `rostopic echo -n 1` on every topic the live
+The README must keep showing: both --help lines, a recorded game replayed with sgf_replay, a
+click on /clicked_point, `rostopic echo -n 1` on every topic the live
 node publishes and a `rosservice call` of every service it offers (both taken from the master
 while the node runs), a tf_echo live and during a replay, a record and a replay launch. Last, a
 live launch after the replay must publish (a `use_sim_time` left behind would silence it).
@@ -58,6 +66,7 @@ NODE = "/stone"
 TIMEOUT_S = 30.0  # for a command that should finish by itself
 STREAM_S = 4.0  # how long a streaming command runs before Ctrl-C
 LAUNCH_MIN_S = 8.0  # a launch runs at least this long (a recording then holds several seconds)
+GAME_TIMEOUT_S = 180.0  # sgf_replay of a whole game, at the README's interval
 # Services every node has; not the README's business.
 ROS_SERVICES = ("get_loggers", "set_logger_level")
 # The simulation controls: checked by their effect on /tf, not by an event of their name.
@@ -129,6 +138,8 @@ class ReadmeCommandsTest(unittest.TestCase):
         self.env = dict(os.environ, PWD=self.folder)
         self.master = rosgraph.Master("/readme_commands_test")
         self.terminal = None  # the running roslaunch line
+        self.recorder = None  # a running `rosbag record` line, and the bag it writes
+        self.recorded_bag = None
         self.terminal_started = 0.0
         self.launch_lines = []  # bash-block roslaunch lines, in order
         self.count = 0
@@ -148,6 +159,8 @@ class ReadmeCommandsTest(unittest.TestCase):
                 self.tf_stamp = t.header.stamp.to_nsec()
 
     def tearDown(self):
+        if self.recorder:
+            self.recorder.ctrl_c()
         if self.terminal:
             self.terminal.ctrl_c()
 
@@ -305,6 +318,47 @@ class ReadmeCommandsTest(unittest.TestCase):
         else:
             self.assertIn("/stone/marker", output, self.where(line))
 
+    def check_record(self, argv, line):
+        self.stop_recorder()
+        self.assertIn("-O", argv, "%s: name the bag with -O" % self.where(line))
+        bag = argv[argv.index("-O") + 1]
+        self.recorded_bag = os.path.join(self.folder, bag if bag.endswith(".bag") else bag + ".bag")
+        self.recorder = self.run_line(line)
+        self.recorder_line = (self.line_number, line)
+        time.sleep(2.0)  # subscribed before the next line acts
+        self.assertIsNone(self.recorder.process.poll(), "%s: ended early:\n%s"
+                          % (self.where(line), self.recorder.output()))
+
+    def stop_recorder(self):
+        if not self.recorder:
+            return
+        output = self.recorder.ctrl_c()
+        self.recorder = None
+        number, line = self.recorder_line
+        self.assertTrue(os.path.exists(self.recorded_bag), "README.md line %d: %s: no %s after "
+                        "Ctrl-C:\n%s" % (number, line, self.recorded_bag, output))
+
+    def check_game(self, argv, line):
+        process = self.run_line(line)
+        try:
+            output = process.wait(GAME_TIMEOUT_S)
+        except subprocess.TimeoutExpired:
+            self.fail("%s: did not finish in %.0f s" % (self.where(line), GAME_TIMEOUT_S))
+        self.assertEqual(process.process.returncode, 0, "%s: exit %d:\n%s"
+                         % (self.where(line), process.process.returncode, output))
+        self.assertIn("replayed", output, "%s:\n%s" % (self.where(line), output))
+
+    def check_click(self, argv, line):
+        placed_before = set(e.stone for e in self.events if e.reason == "place")
+        output = self.finish(line)
+        deadline = time.time() + 2.0
+        while time.time() < deadline:
+            new = set(e.stone for e in self.events if e.reason == "place") - placed_before
+            if new:
+                return
+            time.sleep(0.1)
+        self.fail("%s: no stone placed within 2 s:\n%s" % (self.where(line), output))
+
     def check_launch_loads(self, argv, line):
         nodes = self.finish(line.replace("roslaunch", "roslaunch --nodes", 1))
         self.assertTrue(nodes.strip(), "%s: starts no node" % self.where(line))
@@ -350,6 +404,7 @@ class ReadmeCommandsTest(unittest.TestCase):
             yield from kind
 
     def stop_terminal(self):
+        self.stop_recorder()
         if self.terminal:
             remaining = LAUNCH_MIN_S - (time.time() - self.terminal_started)
             if remaining > 0:
@@ -378,6 +433,12 @@ class ReadmeCommandsTest(unittest.TestCase):
             return "bag_report"
         if argv[:2] in (["rosbag", "info"], ["rosbag", "check"]):
             return "rosbag"
+        if argv[:2] == ["rosbag", "record"]:
+            return "record"
+        if argv[:3] == ["rosrun", PKG, "sgf_replay"]:
+            return "game"
+        if argv[:2] == ["rostopic", "pub"] and "/clicked_point" in argv:
+            return "click"
         return None
 
     def test_readme_commands_work_as_written(self):
@@ -407,6 +468,8 @@ class ReadmeCommandsTest(unittest.TestCase):
                     self.run_node(argv, line)
                     replaying = False
                 else:
+                    if kind in ("bag_report", "rosbag"):
+                        self.stop_recorder()  # the bag is read: the recording ends first
                     getattr(self, "check_" + kind)(argv, line)
                     if kind == "tf_echo" and replaying:
                         kind = "tf_echo_replay"
@@ -415,7 +478,8 @@ class ReadmeCommandsTest(unittest.TestCase):
 
         kinds = [k for k, _ in self.ran]
         for kind in ("help", "service", "control", "node", "echo_once", "tf_echo",
-                     "tf_echo_replay", "replay", "bag_report", "rosbag"):
+                     "tf_echo_replay", "replay", "bag_report", "rosbag", "record", "game",
+                     "click"):
             self.assertIn(kind, kinds, "README.md has no runnable %s line" % kind)
         helped = " ".join(line for k, line in self.ran if k == "help")
         for exe in ("stone_node", "bag_report"):

@@ -4,15 +4,19 @@
 #pragma once
 
 #include <diagnostic_updater/diagnostic_updater.h>
+#include <geometry_msgs/PointStamped.h>
 #include <ros/ros.h>
 #include <std_srvs/Empty.h>
 #include <std_srvs/Trigger.h>
+#include <tf2_ros/buffer.h>
 #include <tf2_ros/transform_broadcaster.h>
+#include <tf2_ros/transform_listener.h>
 #include <visualization_msgs/Marker.h>
 #include <visualization_msgs/MarkerArray.h>
 
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -22,6 +26,7 @@
 #include "virtual_go/SetAngularVelocity.h"
 #include "virtual_go/SetState.h"
 #include "virtual_go/StepSimulation.h"
+#include "virtual_go/sim/click_placement.h"
 #include "virtual_go/sim/clock_watch.h"
 #include "virtual_go/sim/sim_diagnostics.h"
 #include "virtual_go/sim/sim_pacer.h"
@@ -56,6 +61,8 @@ class StoneNode {
   bool on_pause(std_srvs::Empty::Request& request, std_srvs::Empty::Response& response);
   bool on_unpause(std_srvs::Empty::Request& request, std_srvs::Empty::Response& response);
   bool on_step(StepSimulation::Request& request, StepSimulation::Response& response);
+  // rviz's Publish Point tool: a stone set down at the nearest Go point (sim/click_placement.h).
+  void on_clicked_point(const geometry_msgs::PointStamped::ConstPtr& message);
 
   ros::NodeHandle nh_;
   ros::NodeHandle private_nh_;
@@ -80,6 +87,13 @@ class StoneNode {
   ros::ServiceServer pause_srv_;
   ros::ServiceServer unpause_srv_;
   ros::ServiceServer step_srv_;
+  // clicked_point (rviz's Publish Point, /clicked_point): the colours alternate per node. A
+  // click in another frame than the world's is transformed with tf2; the listener is made at
+  // the first such click only, so the node does not read its own /tf otherwise.
+  ros::Subscriber clicked_point_sub_;
+  ClickPlacement clicks_;
+  std::unique_ptr<tf2_ros::Buffer> tf_buffer_;
+  std::unique_ptr<tf2_ros::TransformListener> tf_listener_;
   ros::Timer timer_;
   // With ~publish_clock: the pace of the simulation, its wall timer and /clock.
   std::optional<SimPacer> pacer_;

@@ -133,6 +133,10 @@ class StoneSimulation {
   // `stone_name(0)` (it is not removable), an unknown name or an empty point. Returns the
   // removed stone's name; `answer` as above.
   std::string remove(const std::string& name_or_point, std::string& answer);
+  // The placed stone at a Go point, as remove() finds it: one waiting to be placed there (the
+  // latest), else the placed stone nearest the intersection among those whose nearest point it
+  // is; "" when there is none (or no board). The initial stone is not among them.
+  std::string placed_stone_at(GoPoint point) const;
   // Removes every placed stone at the next step (the initial stone stays).
   std::string clear();
   // The placed stones in the World now, in placement order.
