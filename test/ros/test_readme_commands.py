@@ -387,15 +387,16 @@ class ReadmeCommandsTest(unittest.TestCase):
                                       s.rsplit("/", 1)[1] not in ROS_SERVICES)
 
     def wait_for_node(self, line):
-        # Started: the node announced its first segment (it needs a running clock for that).
+        # Started: the node announced a segment since the launch (it needs a running clock for
+        # that). Not necessarily `start`: ~events is latched with its last message, and a scene
+        # that settles within the first ticks (game.launch: the node's stone set down on the
+        # table) has published start, impacts and rest before this subscriber is connected.
         deadline = time.time() + TIMEOUT_S
-        while time.time() < deadline and not any(e.reason == "start" and
-                                                  e.header.stamp.to_sec() > self.since
+        while time.time() < deadline and not any(e.header.stamp.to_sec() > self.since
                                                   for e in self.events):
             time.sleep(0.1)
-        self.assertTrue(any(e.reason == "start" and e.header.stamp.to_sec() > self.since
-                            for e in self.events),
-                        "%s: the node published no start event in %.0f s" %
+        self.assertTrue(any(e.header.stamp.to_sec() > self.since for e in self.events),
+                        "%s: the node published no event in %.0f s" %
                         (self.where(line), TIMEOUT_S))
 
     def registrations(self):
