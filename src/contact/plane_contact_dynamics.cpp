@@ -23,17 +23,17 @@ void world_inertia(const MotionModel& model, const Eigen::Quaterniond& orientati
   }
   const Vector3& moments = model.mass_properties().principal_moments_body();
   if (moments.x() == moments.y()) {
-    // I1 1 + (I3 - I1) b b^T and 1 / I1 + (1/I3 - 1/I1) b b^T, element by element (the same
-    // arithmetic as the matrix expressions, without their temporaries: this runs at every
-    // right-hand side).
+    // I1 1 + (I3 - I1) b b^T and 1 / I1 + (1/I3 - 1/I1) b b^T element by element: the same
+    // arithmetic as the matrix expressions (I1 1 and 1 / I1 hold exactly I1, 1 / I1 and 0) without
+    // their temporaries and nine divisions; this runs at every right-hand side.
     const double c = moments.z() - moments.x();
-    const double c_inverse = 1.0 / moments.z() - 1.0 / moments.x();
+    const double inverse_1 = 1.0 / moments.x();
+    const double c_inverse = 1.0 / moments.z() - inverse_1;
     for (int i = 0; i < 3; ++i) {
       for (int j = 0; j < 3; ++j) {
-        const double identity = i == j ? 1.0 : 0.0;
         const double bb = axis[i] * axis[j];
-        inertia(i, j) = moments.x() * identity + c * bb;
-        inverse(i, j) = identity / moments.x() + c_inverse * bb;
+        inertia(i, j) = (i == j ? moments.x() : 0.0) + c * bb;
+        inverse(i, j) = (i == j ? inverse_1 : 0.0) + c_inverse * bb;
       }
     }
     return;
