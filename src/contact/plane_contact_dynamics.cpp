@@ -158,13 +158,26 @@ PlaneContactForces solve_plane_contact(const PlaneContactSetup& setup, const Pla
   struct Response {
     Vector3 a, alpha, p;
   };
-  auto respond = [&](const Vector3& force, const Vector3& couple) {
+  // The response to a moment about G (r x force + couple) with the acceleration of G given.
+  auto respond_to = [&](const Vector3& a, const Vector3& moment) {
     Response c;
-    c.a = force / m;
-    c.alpha = inverse_inertia * (r.cross(force) + couple);
+    c.a = a;
+    c.alpha = inverse_inertia * moment;
     c.p = c.a + c.alpha.cross(r);
     return c;
   };
+  auto respond = [&](const Vector3& force, const Vector3& couple) {
+    return respond_to(force / m, r.cross(force) + couple);
+  };
+  // The unit columns without their divisions by m and products with zero: e_i / m is 1 / m and
+  // +0, and r x 0 + couple is the couple, so the values are those of respond() bit for bit.
+  const double unit_over_mass = 1.0 / m;
+  auto respond_unit_force = [&](int axis) {
+    Vector3 a = Vector3::Zero();
+    a[axis] = unit_over_mass;
+    return respond_to(a, r.cross(Vector3::Unit(axis)) + Vector3::Zero());
+  };
+  auto respond_couple = [&](const Vector3& couple) { return respond_to(Vector3::Zero(), couple); };
   // Without contact: gravity and the gyroscopic term; p also carries omega x dr/dt.
   Response free;
   free.a = setup.gravity_world;
@@ -204,18 +217,18 @@ PlaneContactForces solve_plane_contact(const PlaneContactSetup& setup, const Pla
   if (tangential_stuck) {
     for (int axis = 0; axis < 2; ++axis) {
       rows[n] = {false, axis};
-      columns[n++] = respond(Vector3::Unit(axis), Vector3::Zero());
+      columns[n++] = respond_unit_force(axis);
     }
   }
   if (rolling_stuck) {
     for (int axis = 0; axis < 2; ++axis) {
       rows[n] = {true, axis};
-      columns[n++] = respond(Vector3::Zero(), Vector3::Unit(axis));
+      columns[n++] = respond_couple(Vector3::Unit(axis));
     }
   }
   if (spinning_stuck) {
     rows[n] = {true, 2};
-    columns[n++] = respond(Vector3::Zero(), ez);
+    columns[n++] = respond_couple(ez);
   }
   auto component = [](const Row& row, const Response& c) {
     return row.angular ? c.alpha[row.axis] : c.p[row.axis];
