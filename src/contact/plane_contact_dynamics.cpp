@@ -23,10 +23,19 @@ void world_inertia(const MotionModel& model, const Eigen::Quaterniond& orientati
   }
   const Vector3& moments = model.mass_properties().principal_moments_body();
   if (moments.x() == moments.y()) {
-    const Eigen::Matrix3d bb = axis * axis.transpose();
-    inertia = moments.x() * Eigen::Matrix3d::Identity() + (moments.z() - moments.x()) * bb;
-    inverse =
-        Eigen::Matrix3d::Identity() / moments.x() + (1.0 / moments.z() - 1.0 / moments.x()) * bb;
+    // I1 1 + (I3 - I1) b b^T and 1 / I1 + (1/I3 - 1/I1) b b^T element by element: the same
+    // arithmetic as the matrix expressions (I1 1 and 1 / I1 hold exactly I1, 1 / I1 and 0) without
+    // their temporaries and nine divisions; this runs at every right-hand side.
+    const double c = moments.z() - moments.x();
+    const double inverse_1 = 1.0 / moments.x();
+    const double c_inverse = 1.0 / moments.z() - inverse_1;
+    for (int i = 0; i < 3; ++i) {
+      for (int j = 0; j < 3; ++j) {
+        const double bb = axis[i] * axis[j];
+        inertia(i, j) = (i == j ? moments.x() : 0.0) + c * bb;
+        inverse(i, j) = (i == j ? inverse_1 : 0.0) + c_inverse * bb;
+      }
+    }
     return;
   }
   const Eigen::Matrix3d rotation = orientation.toRotationMatrix();
@@ -149,13 +158,26 @@ PlaneContactForces solve_plane_contact(const PlaneContactSetup& setup, const Pla
   struct Response {
     Vector3 a, alpha, p;
   };
-  auto respond = [&](const Vector3& force, const Vector3& couple) {
+  // The response to a moment about G (r x force + couple) with the acceleration of G given.
+  auto respond_to = [&](const Vector3& a, const Vector3& moment) {
     Response c;
-    c.a = force / m;
-    c.alpha = inverse_inertia * (r.cross(force) + couple);
+    c.a = a;
+    c.alpha = inverse_inertia * moment;
     c.p = c.a + c.alpha.cross(r);
     return c;
   };
+  auto respond = [&](const Vector3& force, const Vector3& couple) {
+    return respond_to(force / m, r.cross(force) + couple);
+  };
+  // The unit columns without their divisions by m and products with zero: e_i / m is 1 / m and
+  // +0, and r x 0 + couple is the couple, so the values are those of respond() bit for bit.
+  const double unit_over_mass = 1.0 / m;
+  auto respond_unit_force = [&](int axis) {
+    Vector3 a = Vector3::Zero();
+    a[axis] = unit_over_mass;
+    return respond_to(a, r.cross(Vector3::Unit(axis)) + Vector3::Zero());
+  };
+  auto respond_couple = [&](const Vector3& couple) { return respond_to(Vector3::Zero(), couple); };
   // Without contact: gravity and the gyroscopic term; p also carries omega x dr/dt.
   Response free;
   free.a = setup.gravity_world;
@@ -195,18 +217,18 @@ PlaneContactForces solve_plane_contact(const PlaneContactSetup& setup, const Pla
   if (tangential_stuck) {
     for (int axis = 0; axis < 2; ++axis) {
       rows[n] = {false, axis};
-      columns[n++] = respond(Vector3::Unit(axis), Vector3::Zero());
+      columns[n++] = respond_unit_force(axis);
     }
   }
   if (rolling_stuck) {
     for (int axis = 0; axis < 2; ++axis) {
       rows[n] = {true, axis};
-      columns[n++] = respond(Vector3::Zero(), Vector3::Unit(axis));
+      columns[n++] = respond_couple(Vector3::Unit(axis));
     }
   }
   if (spinning_stuck) {
     rows[n] = {true, 2};
-    columns[n++] = respond(Vector3::Zero(), ez);
+    columns[n++] = respond_couple(ez);
   }
   auto component = [](const Row& row, const Response& c) {
     return row.angular ? c.alpha[row.axis] : c.p[row.axis];

@@ -88,9 +88,11 @@ class PlaneContactLaws {
   // (enough for every force and event of an axisymmetric stone; no trigonometry).
   PlaneContactKinematics decode(const PlaneContactMode& mode, const State& y,
                                 bool full_orientation = true) const;
-  // dy/dt; `forces` (optional) receives the forces solved on the way.
+  // dy/dt; `forces` and `kinematics` (optional) receive the forces solved on the way and the
+  // kinematics they were solved at (decode(mode, y, false)).
   void rhs(const PlaneContactMode& mode, const State& y, State& dydt,
-           PlaneContactForces* forces = nullptr) const;
+           PlaneContactForces* forces = nullptr,
+           PlaneContactKinematics* kinematics = nullptr) const;
   // The quaternion rows of dy/dt alone (no force solve): after psi is folded into q~.
   void orientation_rates(const State& y, State& dydt) const;
   // q~ (x) rotation(psi) into q~, psi = 0; the rates follow (they are linear in q~).

@@ -52,7 +52,7 @@ PlaneContactKinematics PlaneContactLaws::decode(const PlaneContactMode& mode, co
 }
 
 void PlaneContactLaws::rhs(const PlaneContactMode& mode, const State& y, State& dydt,
-                           PlaneContactForces* forces) const {
+                           PlaneContactForces* forces, PlaneContactKinematics* kinematics) const {
   ++counters_.rhs_evaluations;
   // psi is 0 at a step's start and only an axisymmetric stone moves it, so q~ alone is the
   // orientation the forces need.
@@ -77,6 +77,7 @@ void PlaneContactLaws::rhs(const PlaneContactMode& mode, const State& y, State& 
   dydt[kVy] = f.linear_acceleration_world.y();
   for (int i = 0; i < 3; ++i) dydt[kWx + i] = f.angular_acceleration_world[i];
   if (forces) *forces = f;
+  if (kinematics) *kinematics = k;
 }
 
 void PlaneContactLaws::fold_spin(State& y, State* dydt) const {

@@ -187,8 +187,8 @@ void PlaneContact::Impl::step_in(Segment& segment) {
   segment.t_end = t_ + h;
   // The step end's rates: the next step's first stage, and the forces its events need.
   PlaneContactForces forces_end;
-  laws_.rhs(mode_, segment.y1, segment.k[12], &forces_end);
-  const PlaneContactKinematics k_end = laws_.decode(mode_, segment.y1, false);
+  PlaneContactKinematics k_end;
+  laws_.rhs(mode_, segment.y1, segment.k[12], &forces_end, &k_end);
 
   // Events: a value positive at the step start and not positive at its end; or one already not
   // positive at the start that went negative (a part released the wrong way): at the start.

@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <utility>
 
 namespace virtual_go::dop853 {
 
@@ -146,31 +147,73 @@ inline constexpr double d[4][16] = {
 };
 }  // namespace coefficients
 
-// y0 + h sum_{j<i} a[i][j] k[j]: the argument of stage i.
-template <int N>
-Vector<N> stage_argument(int i, double h, const Vector<N>& y0, const Stages<N>& k) {
-  Vector<N> sum = coefficients::a[i][0] * k[0];
-  for (int j = 1; j < i; ++j) {
-    if (coefficients::a[i][j] != 0.0) sum += coefficients::a[i][j] * k[j];
+namespace detail {
+// Rows of coefficients as types, for the sums below.
+template <int I>
+struct StageRow {
+  static constexpr double at(int j) { return coefficients::a[I][j]; }
+};
+struct ErrorRow5 {
+  static constexpr double at(int j) { return coefficients::e5[j]; }
+};
+struct ErrorRow3 {
+  static constexpr double at(int j) { return coefficients::e3[j]; }
+};
+template <int R>
+struct DenseRow {
+  static constexpr double at(int j) { return coefficients::d[R][j]; }
+};
+
+// sum + sum_{J in [From, To)} C::at(J) k[J] over the terms whose coefficient is not zero,
+// element by element, added in the order of J (so it rounds exactly as a loop over J does); the
+// coefficients are constants, so no branch or zero term is left at run time.
+template <class C, int From, int... J, int N>
+void add_terms_of(Vector<N>& sum, const std::array<Vector<N>, 16>& k,
+                  std::integer_sequence<int, J...>) {
+  for (int n = 0; n < N; ++n) {
+    double s = sum[n];
+    ((C::at(From + J) != 0.0 ? (s += C::at(From + J) * k[From + J][n], 0) : 0), ...);
+    sum[n] = s;
   }
+}
+template <class C, int From, int To, int N>
+void add_terms(Vector<N>& sum, const std::array<Vector<N>, 16>& k) {
+  if constexpr (From < To) {
+    add_terms_of<C, From>(sum, k, std::make_integer_sequence<int, To - From>());
+  }
+}
+}  // namespace detail
+
+// y0 + h sum_{j<I} a[I][j] k[j]: the argument of stage I.
+template <int I, int N>
+Vector<N> stage_argument(double h, const Vector<N>& y0, const Stages<N>& k) {
+  Vector<N> sum = coefficients::a[I][0] * k[0];
+  detail::add_terms<detail::StageRow<I>, 1, I, N>(sum, k);
   return y0 + h * sum;
 }
+
+namespace detail {
+// Stages I..To-1 of a step, in order: k[i] = f(t0 + c_i h, stage_argument<i>).
+template <int I, int To, int N, class F>
+void stages(F& f, double t0, double h, const Vector<N>& y0, Stages<N>& k) {
+  if constexpr (I < To) {
+    f(t0 + coefficients::c[I] * h, stage_argument<I, N>(h, y0, k), k[I]);
+    stages<I + 1, To, N>(f, t0, h, y0, k);
+  }
+}
+}  // namespace detail
 
 // One trial step of size h from (t0, y0), with k[0] = f(t0, y0) given: fills k[1..11], the 8th-
 // order solution y1 and the error estimate (see error_norm). f(t, y, dydt).
 template <int N, class F>
 void trial_step(F& f, double t0, double h, const Vector<N>& y0, Stages<N>& k, Vector<N>& y1,
                 Vector<N>& err5, Vector<N>& err3) {
-  for (int i = 1; i < 12; ++i) {
-    f(t0 + coefficients::c[i] * h, stage_argument<N>(i, h, y0, k), k[i]);
-  }
-  y1 = stage_argument<N>(12, h, y0, k);
-  err5.setZero();
-  err3.setZero();
-  for (int j = 0; j < 12; ++j) {
-    if (coefficients::e5[j] != 0.0) err5 += coefficients::e5[j] * k[j];
-    if (coefficients::e3[j] != 0.0) err3 += coefficients::e3[j] * k[j];
-  }
+  detail::stages<1, 12, N>(f, t0, h, y0, k);
+  y1 = stage_argument<12, N>(h, y0, k);
+  err5 = coefficients::e5[0] * k[0];
+  err3 = coefficients::e3[0] * k[0];
+  detail::add_terms<detail::ErrorRow5, 1, 12, N>(err5, k);
+  detail::add_terms<detail::ErrorRow3, 1, 12, N>(err3, k);
 }
 
 // Hairer's combined error of a step, measured in the per-component scales (atol + rtol |y|, as
@@ -192,19 +235,24 @@ inline double next_step_size(double h, double error, bool after_rejection) {
   return h * (after_rejection ? std::min(1.0, factor) : factor);
 }
 
+// Row R of the dense output: h (d[R][0] k0 + sum_{j>=5} d[R][j] k[j]).
+template <int R, int N>
+void dense_row(double h, const Stages<N>& k, std::array<Vector<N>, 4>& dense) {
+  Vector<N> sum = coefficients::d[R][0] * k[0];
+  detail::add_terms<detail::DenseRow<R>, 5, 16, N>(sum, k);
+  dense[R] = h * sum;
+}
+
 // The dense output of an accepted step (k[0..12] filled): the three extra stages k[13..15] and
 // the coefficients of powers 3..6.
 template <int N, class F>
 void dense_coefficients(F& f, double t0, double h, const Vector<N>& y0, Stages<N>& k,
                         std::array<Vector<N>, 4>& dense) {
-  for (int i = 13; i < 16; ++i) {
-    f(t0 + coefficients::c[i] * h, stage_argument<N>(i, h, y0, k), k[i]);
-  }
-  for (int r = 0; r < 4; ++r) {
-    Vector<N> sum = coefficients::d[r][0] * k[0];
-    for (int j = 5; j < 16; ++j) sum += coefficients::d[r][j] * k[j];
-    dense[r] = h * sum;
-  }
+  detail::stages<13, 16, N>(f, t0, h, y0, k);
+  dense_row<0, N>(h, k, dense);
+  dense_row<1, N>(h, k, dense);
+  dense_row<2, N>(h, k, dense);
+  dense_row<3, N>(h, k, dense);
 }
 
 // The state at theta = (t - t0) / h in [0, 1] of a step with its dense coefficients:
