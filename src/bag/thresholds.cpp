@@ -34,6 +34,8 @@ const ContactLimit kContactLimits[kContactLimitCount] = {
      "|J - J0| / (R max|L|): flights; cap contact when l_r = l_s = 0"},
     {"rest motion", "--max-rest-moves", 0.0, "samples",
      "rest segments: samples not bitwise equal to the first or not at zero velocity"},
+    {"stone overlap (m)", "--max-overlap", 1e-9, "m",
+     "two stones of one ~stones message: penetration depth of the two lenses (< 0: apart)"},
 };
 
 }  // namespace
@@ -102,7 +104,9 @@ PhysicsBounds physics_bounds(const std::string& integrator, double dt_s,
 }
 
 std::vector<Check> run_checks(const Recording& recording, const std::vector<StampStatistics>& stats,
-                              const PhysicsResult* physics, const LimitOverrides& overrides) {
+                              const PhysicsResult* physics, const LimitOverrides& overrides,
+                              const std::vector<StonePhysics>& stones,
+                              const StoneOverlapResult* overlap) {
   std::vector<Check> checks;
   auto add = [&](std::string figure, std::string subject, double value, double limit,
                  std::string basis) {
@@ -119,6 +123,7 @@ std::vector<Check> run_checks(const Recording& recording, const std::vector<Stam
         "stamps must strictly increase");
     add("non-increasing stamps", topic.topic, static_cast<double>(s.non_increasing.size()), 0.0,
         "stamps must strictly increase");
+    if (topic.on_change) continue;
     add("gaps > 2x period", topic.topic, static_cast<double>(s.gaps.size()),
         static_cast<double>(overrides.max_gaps), "--max-gaps");
     if (topic.at_node_rate && recording.info && recording.info->rate_hz > 0.0 && s.count > 1) {
@@ -129,7 +134,19 @@ std::vector<Check> run_checks(const Recording& recording, const std::vector<Stam
     }
   }
 
-  if (physics == nullptr || !recording.info) return checks;
+  const double overlap_limit = overrides.contact[kOverlap] ? *overrides.contact[kOverlap]
+                                                            : contact_limit(kOverlap).default_limit;
+  if (overlap != nullptr && std::isfinite(overlap->min_gap_m)) {
+    std::ostringstream basis;
+    basis << contact_limit(kOverlap).option << ", m; at " << std::fixed << std::setprecision(6)
+          << to_seconds(overlap->stamp_ns) << " s; "
+          << std::count_if(overlap->overlaps.begin(), overlap->overlaps.end(),
+                           [&](const PairOverlap& o) { return o.depth_m > overlap_limit; })
+          << " pairs over the limit";
+    add(contact_limit(kOverlap).figure, "stones " + overlap->stone_a + ", " + overlap->stone_b,
+        -overlap->min_gap_m, overlap_limit, basis.str());
+  }
+  if (!recording.info || (physics == nullptr && stones.empty())) return checks;
   // A message with a NaN or infinity has no figures, and the maxima skip NaN: the count
   // itself has to fail --strict.
   auto add_non_finite = [&](const NonFiniteValues& v, const std::string& topic) {
@@ -141,11 +158,32 @@ std::vector<Check> run_checks(const Recording& recording, const std::vector<Stam
     }
     add("non-finite values", topic, static_cast<double>(v.count), 0.0, basis);
   };
-  add_non_finite(physics->non_finite_odom, recording.odom_topic);
-  if (!recording.events.empty()) {
-    add_non_finite(physics->non_finite_events, recording.events_topic);
+  if (physics != nullptr) {
+    add_non_finite(physics->non_finite_odom, recording.odom_topic);
+    if (!recording.events.empty()) {
+      add_non_finite(physics->non_finite_events, recording.events_topic);
+    }
   }
-  const RecordingInfo& info = *recording.info;
+  if (!stones.empty()) {
+    NonFiniteValues samples, events;
+    auto sum = [](NonFiniteValues& total, const NonFiniteValues& v) {
+      if (v.count > 0 && (total.count == 0 || v.first_stamp_ns < total.first_stamp_ns)) {
+        total.first_stamp_ns = v.first_stamp_ns;
+        total.first_field = v.first_field;
+      }
+      total.count += v.count;
+    };
+    for (const StonePhysics& s : stones) {
+      if (!s.physics) {
+        add("stone checked", "stone " + s.name, NAN, 0.0, s.note);
+        continue;
+      }
+      sum(samples, s.physics->non_finite_odom);
+      sum(events, s.physics->non_finite_events);
+    }
+    add_non_finite(samples, recording.stones_topic + " and /tf");
+    if (!recording.events.empty()) add_non_finite(events, recording.events_topic + " (stones)");
+  }
   // Per figure, the segment closest to (or furthest over) its own limit, and every other
   // segment over it (a violation is named per segment, with its numbers).
   constexpr int kFlightFigures = 5;
@@ -159,14 +197,31 @@ std::vector<Check> run_checks(const Recording& recording, const std::vector<Stam
   std::vector<Check> over;  // segments over a limit, other than the worst
   const char* names[kFlightFigures] = {"max | |q| - 1 |", "energy drift", "momentum drift",
                                        "orientation error (rad)", "position error (m)"};
-  for (std::size_t k = 0; k < physics->segments.size(); ++k) {
-    const SegmentResult& seg = physics->segments[k];
+  // Segments of every stone compete for the worst of each figure; with several stones a
+  // segment's subject names its stone.
+  struct Checked {
+    const PhysicsResult* physics;
+    const RecordingInfo* info;
+    std::string prefix;
+  };
+  std::vector<Checked> checked;
+  if (physics != nullptr) {
+    checked.push_back({physics, &*recording.info,
+                       stones.empty() ? "" : "stone " + recording.info->stone_frame + " "});
+  }
+  for (const StonePhysics& s : stones) {
+    if (s.physics) checked.push_back({&*s.physics, &s.info, "stone " + s.name + " "});
+  }
+  for (const Checked& stone : checked) {
+  const RecordingInfo& info = *stone.info;
+  for (std::size_t k = 0; k < stone.physics->segments.size(); ++k) {
+    const SegmentResult& seg = stone.physics->segments[k];
     if (seg.samples == 0) continue;
     PhysicsBounds b;
     try {
       b = physics_bounds(info.integrator, info.dt_s, seg, info.gravity_world.norm(), overrides);
     } catch (const InvalidArgument& e) {
-      add("physics bound", "segment " + std::to_string(k), NAN, 0.0, e.what());
+      add("physics bound", stone.prefix + "segment " + std::to_string(k), NAN, 0.0, e.what());
       return checks;
     }
     const bool flight = seg.kind == SegmentKind::flight;
@@ -180,7 +235,8 @@ std::vector<Check> run_checks(const Recording& recording, const std::vector<Stam
                                seg.max_energy_rise,
                                -seg.min_gap_m,
                                seg.max_jellett_drift,
-                               static_cast<double>(seg.rest_moved)};
+                               static_cast<double>(seg.rest_moved),
+                               NAN};
     const bool applies[kFigures] = {true,
                                     flight || rest,
                                     flight || rest,
@@ -189,7 +245,8 @@ std::vector<Check> run_checks(const Recording& recording, const std::vector<Stam
                                     seg.kind == SegmentKind::contact,
                                     seg.board,
                                     seg.jellett_conserved,
-                                    rest};
+                                    rest,
+                                    false};  // overlap: per pair of stones, below
     double limits[kFigures] = {b.quat_norm_error, b.energy_drift, b.momentum_drift,
                                b.orientation_error, b.position_error};
     for (int c = 0; c < kContactLimitCount; ++c) {
@@ -220,7 +277,7 @@ std::vector<Check> run_checks(const Recording& recording, const std::vector<Stam
         }
       }
       const Check check{f < kFlightFigures ? names[f] : contact_limit(f - kFlightFigures).figure,
-                        "segment " + std::to_string(k) + kind,
+                        stone.prefix + "segment " + std::to_string(k) + kind,
                         values[f],
                         limits[f],
                         std::isfinite(values[f]) && values[f] <= limits[f],
@@ -232,6 +289,7 @@ std::vector<Check> run_checks(const Recording& recording, const std::vector<Stam
         over.push_back(check);
       }
     }
+  }
   }
   for (const Worst& w : worst) {
     if (w.seen) checks.push_back(w.check);
