@@ -337,10 +337,9 @@ class Reader {
       for (const auto& [parent, sample] : found->second) {
         if (parent == world) samples.push_back(sample);
       }
-      std::stable_sort(samples.begin(), samples.end(),
-                       [](const OdomSample& a, const OdomSample& b) {
-                         return a.stamp_ns < b.stamp_ns;
-                       });
+      std::stable_sort(
+          samples.begin(), samples.end(),
+          [](const OdomSample& a, const OdomSample& b) { return a.stamp_ns < b.stamp_ns; });
       std::vector<OdomSample> kept;
       kept.reserve(samples.size());
       for (const OdomSample& s : samples) {

@@ -86,11 +86,10 @@ void print_stones(std::ostream& out, const Report& report) {
       if (s.board) gap = std::fmin(gap, s.min_gap_m);
       board = board || s.board;
     }
-    out << std::setw(6) << stone.physics->segments.size() << std::setw(8) << samples
-        << std::setw(8) << flights << std::setw(11) << (predicted ? sci(orient) : "n/a")
-        << std::setw(11) << (predicted ? sci(pos) : "n/a") << std::setw(11) << sci(energy)
-        << std::setw(11) << sci(rise) << std::setw(11) << (board ? sci(gap) : "-") << std::setw(8)
-        << moved << "\n";
+    out << std::setw(6) << stone.physics->segments.size() << std::setw(8) << samples << std::setw(8)
+        << flights << std::setw(11) << (predicted ? sci(orient) : "n/a") << std::setw(11)
+        << (predicted ? sci(pos) : "n/a") << std::setw(11) << sci(energy) << std::setw(11)
+        << sci(rise) << std::setw(11) << (board ? sci(gap) : "-") << std::setw(8) << moved << "\n";
   }
 }
 
@@ -134,8 +133,8 @@ Report analyse(Recording recording, const LimitOverrides& limits) {
       stone.color = track.color;
       try {
         stone.info = info_of_stone(*rec.info, track);
-        stone.physics =
-            check_physics(stone.info, track.samples, events_of_stone(rec.events, track.name, *rec.info));
+        stone.physics = check_physics(stone.info, track.samples,
+                                      events_of_stone(rec.events, track.name, *rec.info));
       } catch (const std::exception& e) {
         stone.note = "stone " + cut_user_text(track.name) + " cannot be checked: " + e.what();
       }
@@ -292,8 +291,7 @@ void print_report(std::ostream& out, const Report& report) {
     for (std::size_t i = 0; i < o.overlaps.size() && i < kShown; ++i) {
       const PairOverlap& p = o.overlaps[i];
       out << "  overlap " << p.stone_a << " and " << p.stone_b << ": " << sci(p.depth_m)
-          << " m deep at " << short_stamp_text(p.stamp_ns) << " s (" << p.stamps
-          << " messages)\n";
+          << " m deep at " << short_stamp_text(p.stamp_ns) << " s (" << p.stamps << " messages)\n";
     }
     if (o.overlaps.size() > kShown) {
       out << "  ... " << o.overlaps.size() - kShown << " more overlapping pairs\n";

@@ -44,8 +44,8 @@ StoneOverlapResult check_stone_overlaps(const std::vector<StoneTrack>& tracks,
         continue;
       }
       const Eigen::Quaterniond q = snap.orientation_raw[i].normalized();
-      entries.push_back({k, {snap.position_world[i], q * Eigen::Vector3d::UnitZ()},
-                         lenses[k]->half_width()});
+      entries.push_back(
+          {k, {snap.position_world[i], q * Eigen::Vector3d::UnitZ()}, lenses[k]->half_width()});
     }
     if (entries.size() < 2) continue;
     ++result.snapshots;
@@ -74,7 +74,8 @@ StoneOverlapResult check_stone_overlaps(const std::vector<StoneTrack>& tracks,
         const auto [it, added] =
             overlap_of_pair.emplace(std::make_pair(first, second), result.overlaps.size());
         if (added) {
-          result.overlaps.push_back({tracks[first].name, tracks[second].name, snap.stamp_ns, 0.0, 0});
+          result.overlaps.push_back(
+              {tracks[first].name, tracks[second].name, snap.stamp_ns, 0.0, 0});
         }
         PairOverlap& o = result.overlaps[it->second];
         ++o.stamps;

@@ -135,7 +135,7 @@ std::vector<Check> run_checks(const Recording& recording, const std::vector<Stam
   }
 
   const double overlap_limit = overrides.contact[kOverlap] ? *overrides.contact[kOverlap]
-                                                            : contact_limit(kOverlap).default_limit;
+                                                           : contact_limit(kOverlap).default_limit;
   if (overlap != nullptr && std::isfinite(overlap->min_gap_m)) {
     std::ostringstream basis;
     basis << contact_limit(kOverlap).option << ", m; at " << std::fixed << std::setprecision(6)
@@ -213,83 +213,78 @@ std::vector<Check> run_checks(const Recording& recording, const std::vector<Stam
     if (s.physics) checked.push_back({&*s.physics, &s.info, "stone " + s.name + " "});
   }
   for (const Checked& stone : checked) {
-  const RecordingInfo& info = *stone.info;
-  for (std::size_t k = 0; k < stone.physics->segments.size(); ++k) {
-    const SegmentResult& seg = stone.physics->segments[k];
-    if (seg.samples == 0) continue;
-    PhysicsBounds b;
-    try {
-      b = physics_bounds(info.integrator, info.dt_s, seg, info.gravity_world.norm(), overrides);
-    } catch (const InvalidArgument& e) {
-      add("physics bound", stone.prefix + "segment " + std::to_string(k), NAN, 0.0, e.what());
-      return checks;
-    }
-    const bool flight = seg.kind == SegmentKind::flight;
-    const bool rest = seg.kind == SegmentKind::rest;
-    // What each figure is for this segment; NaN computes nothing, `applies` false skips it.
-    double values[kFigures] = {seg.max_quat_norm_error,
-                               seg.max_energy_drift,
-                               seg.max_momentum_drift,
-                               seg.predicted ? seg.max_orientation_error : NAN,
-                               seg.predicted ? seg.max_position_error : NAN,
-                               seg.max_energy_rise,
-                               -seg.min_gap_m,
-                               seg.max_jellett_drift,
-                               static_cast<double>(seg.rest_moved),
-                               NAN};
-    const bool applies[kFigures] = {true,
-                                    flight || rest,
-                                    flight || rest,
-                                    flight,
-                                    flight,
-                                    seg.kind == SegmentKind::contact,
-                                    seg.board,
-                                    seg.jellett_conserved,
-                                    rest,
-                                    false};  // overlap: per pair of stones, below
-    double limits[kFigures] = {b.quat_norm_error, b.energy_drift, b.momentum_drift,
-                               b.orientation_error, b.position_error};
-    for (int c = 0; c < kContactLimitCount; ++c) {
-      limits[kFlightFigures + c] =
-          overrides.contact[c] ? *overrides.contact[c] : contact_limit(c).default_limit;
-    }
-    const std::string kind = " (" + segment_kind_name(seg.kind) + ", " + seg.plan.reason + ")";
-    for (int f = 0; f < kFigures; ++f) {
-      if (!applies[f]) continue;
-      double ratio = INFINITY;  // a figure that could not be computed is the worst
-      if (std::isfinite(values[f])) {
-        // A clearance (negative penetration) gives a negative ratio: the smallest is the worst.
-        ratio = limits[f] > 0.0 ? values[f] / limits[f]
-                                : (values[f] > limits[f] ? INFINITY : values[f] - limits[f]);
+    const RecordingInfo& info = *stone.info;
+    for (std::size_t k = 0; k < stone.physics->segments.size(); ++k) {
+      const SegmentResult& seg = stone.physics->segments[k];
+      if (seg.samples == 0) continue;
+      PhysicsBounds b;
+      try {
+        b = physics_bounds(info.integrator, info.dt_s, seg, info.gravity_world.norm(), overrides);
+      } catch (const InvalidArgument& e) {
+        add("physics bound", stone.prefix + "segment " + std::to_string(k), NAN, 0.0, e.what());
+        return checks;
       }
-      std::string basis;
-      if (f == 0) {
-        basis = "a published quaternion is unit";
-      } else if (f < kFlightFigures) {
-        basis = seg.predicted || f < 3 ? b.basis : seg.note;
-      } else {
-        const ContactLimit& c = contact_limit(f - kFlightFigures);
-        basis = std::string(c.option) + ", " + c.unit;
-        if (f - kFlightFigures == kRestMoves && seg.rest_moved > 0) {
-          std::ostringstream moved;
-          moved << "; largest move " << seg.rest_max_move_m << " m";
-          basis += moved.str();
+      const bool flight = seg.kind == SegmentKind::flight;
+      const bool rest = seg.kind == SegmentKind::rest;
+      // What each figure is for this segment; NaN computes nothing, `applies` false skips it.
+      double values[kFigures] = {seg.max_quat_norm_error,
+                                 seg.max_energy_drift,
+                                 seg.max_momentum_drift,
+                                 seg.predicted ? seg.max_orientation_error : NAN,
+                                 seg.predicted ? seg.max_position_error : NAN,
+                                 seg.max_energy_rise,
+                                 -seg.min_gap_m,
+                                 seg.max_jellett_drift,
+                                 static_cast<double>(seg.rest_moved),
+                                 NAN};
+      const bool applies[kFigures] = {true,           flight || rest,
+                                      flight || rest, flight,
+                                      flight,         seg.kind == SegmentKind::contact,
+                                      seg.board,      seg.jellett_conserved,
+                                      rest,           false};  // overlap: per pair of stones, below
+      double limits[kFigures] = {b.quat_norm_error, b.energy_drift, b.momentum_drift,
+                                 b.orientation_error, b.position_error};
+      for (int c = 0; c < kContactLimitCount; ++c) {
+        limits[kFlightFigures + c] =
+            overrides.contact[c] ? *overrides.contact[c] : contact_limit(c).default_limit;
+      }
+      const std::string kind = " (" + segment_kind_name(seg.kind) + ", " + seg.plan.reason + ")";
+      for (int f = 0; f < kFigures; ++f) {
+        if (!applies[f]) continue;
+        double ratio = INFINITY;  // a figure that could not be computed is the worst
+        if (std::isfinite(values[f])) {
+          // A clearance (negative penetration) gives a negative ratio: the smallest is the worst.
+          ratio = limits[f] > 0.0 ? values[f] / limits[f]
+                                  : (values[f] > limits[f] ? INFINITY : values[f] - limits[f]);
+        }
+        std::string basis;
+        if (f == 0) {
+          basis = "a published quaternion is unit";
+        } else if (f < kFlightFigures) {
+          basis = seg.predicted || f < 3 ? b.basis : seg.note;
+        } else {
+          const ContactLimit& c = contact_limit(f - kFlightFigures);
+          basis = std::string(c.option) + ", " + c.unit;
+          if (f - kFlightFigures == kRestMoves && seg.rest_moved > 0) {
+            std::ostringstream moved;
+            moved << "; largest move " << seg.rest_max_move_m << " m";
+            basis += moved.str();
+          }
+        }
+        const Check check{f < kFlightFigures ? names[f] : contact_limit(f - kFlightFigures).figure,
+                          stone.prefix + "segment " + std::to_string(k) + kind,
+                          values[f],
+                          limits[f],
+                          std::isfinite(values[f]) && values[f] <= limits[f],
+                          basis};
+        if (!worst[f].seen || ratio > worst[f].ratio) {
+          if (worst[f].seen && !worst[f].check.pass) over.push_back(worst[f].check);
+          worst[f] = {true, ratio, check};
+        } else if (!check.pass) {
+          over.push_back(check);
         }
       }
-      const Check check{f < kFlightFigures ? names[f] : contact_limit(f - kFlightFigures).figure,
-                        stone.prefix + "segment " + std::to_string(k) + kind,
-                        values[f],
-                        limits[f],
-                        std::isfinite(values[f]) && values[f] <= limits[f],
-                        basis};
-      if (!worst[f].seen || ratio > worst[f].ratio) {
-        if (worst[f].seen && !worst[f].check.pass) over.push_back(worst[f].check);
-        worst[f] = {true, ratio, check};
-      } else if (!check.pass) {
-        over.push_back(check);
-      }
     }
-  }
   }
   for (const Worst& w : worst) {
     if (w.seen) checks.push_back(w.check);

@@ -150,7 +150,7 @@ RecordingInfo info_of_stone(const RecordingInfo& info, const StoneTrack& track);
 struct StonePhysics {
   std::string name;
   std::string color;
-  RecordingInfo info;  // info_of_stone
+  RecordingInfo info;                    // info_of_stone
   std::optional<PhysicsResult> physics;  // none when the stone cannot be checked (note says why)
   std::string note;
 };

@@ -18,7 +18,7 @@ namespace bag {
 
 struct Report {
   Recording recording;
-  std::vector<StampStatistics> stats;  // one per recording.topics entry
+  std::vector<StampStatistics> stats;    // one per recording.topics entry
   std::optional<PhysicsResult> physics;  // the stone of ~odom
   // Every other stone of ~stones (all of them when the bag has no ~odom), in the order ~stones
   // first names them; and the overlap of every pair at each ~stones message.

@@ -18,7 +18,7 @@ namespace bag {
 struct PairOverlap {
   std::string stone_a, stone_b;
   std::int64_t stamp_ns = 0;
-  double depth_m = 0.0;  // penetration depth (> 0)
+  double depth_m = 0.0;    // penetration depth (> 0)
   std::size_t stamps = 0;  // ~stones messages in which the pair overlapped
 };
 
