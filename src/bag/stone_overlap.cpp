@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <map>
 #include <optional>
@@ -33,6 +34,16 @@ StoneOverlapResult check_stone_overlaps(const std::vector<StoneTrack>& tracks,
     double reach_m;  // half width: the lens lies inside this ball about its centre
   };
   std::vector<Entry> entries;
+  struct Measured {
+    bool valid = false;
+    LensPose first, second;
+    double gap_m = 0.0;
+  };
+  std::map<std::pair<std::size_t, std::size_t>, Measured> measured;
+  auto same_pose = [](const LensPose& a, const LensPose& b) {
+    return std::memcmp(a.center_world.data(), b.center_world.data(), 3 * sizeof(double)) == 0 &&
+           std::memcmp(a.axis_world.data(), b.axis_world.data(), 3 * sizeof(double)) == 0;
+  };
   for (const StonesSnapshot& snap : snapshots) {
     entries.clear();
     for (std::size_t i = 0; i < snap.track.size(); ++i) {
@@ -60,10 +71,19 @@ StoneOverlapResult check_stone_overlaps(const std::vector<StoneTrack>& tracks,
         const double reach = a.reach_m + b.reach_m;
         if (b.pose.center_world.x() - a.pose.center_world.x() > reach) break;
         if ((b.pose.center_world - a.pose.center_world).norm() > reach) continue;
-        const double gap =
-            lens_pair_distance(*lenses[a.track], a.pose, *lenses[b.track], b.pose).gap_m;
-        ++result.pairs_measured;
         const auto [first, second] = std::minmax(a.track, b.track);
+        // Resting stones keep their poses bit for bit: a pair measured at the same poses before
+        // has the same distance.
+        const bool a_first = a.track == first;
+        const LensPose& pose_first = a_first ? a.pose : b.pose;
+        const LensPose& pose_second = a_first ? b.pose : a.pose;
+        Measured& m = measured[{first, second}];
+        if (!m.valid || !same_pose(m.first, pose_first) || !same_pose(m.second, pose_second)) {
+          m = {true, pose_first, pose_second,
+               lens_pair_distance(*lenses[first], pose_first, *lenses[second], pose_second).gap_m};
+        }
+        const double gap = m.gap_m;
+        ++result.pairs_measured;
         if (gap < result.min_gap_m) {
           result.min_gap_m = gap;
           result.stone_a = tracks[first].name;

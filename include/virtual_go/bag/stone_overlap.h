@@ -2,7 +2,8 @@
 // distance of every pair of lenses that can touch, measured with the core's lens-lens distance
 // (geometry/lens_pair_distance.h). A pair whose centres lie farther apart than the sum of the
 // two half widths cannot touch (each lens lies inside the ball of radius half its width about
-// its centre) and is not measured.
+// its centre) and is not measured; a pair at the poses of its last measurement, bit for bit
+// (stones at rest), keeps that distance.
 #pragma once
 
 #include <cstdint>
