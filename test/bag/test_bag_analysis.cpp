@@ -413,15 +413,16 @@ vb::StonesSnapshot flat_pair(const Eigen::Vector3d& a, const Eigen::Vector3d& b)
 
 }  // namespace
 
-// Two flat lenses side by side: the rims are the closest points, gap = d - a_A - a_B; one
-// above the other: the caps' tops on the common axis, gap = dz - c_A - c_B (the shortest way
-// apart is straight up). Stones farther apart than their half widths are not measured.
+// Two flat lenses one above the other: the caps' tops on the common axis are the closest points,
+// gap = dz - c_A - c_B, and overlapping the shortest way apart is straight up (depth
+// c_A + c_B - dz). Side by side with the centres farther apart than a_A + a_B (rim to rim: gap
+// d - a_A - a_B > 0) they are not measured.
 TEST(StoneOverlap, FlatStonesAgainstTheirClosedForms) {
   const std::vector<vb::StoneTrack> tracks = {track("black_1"), track("white_1", 0.0219, 0.009)};
   const double a_sum = 0.0222 / 2 + 0.0219 / 2, c_sum = 0.0092 / 2 + 0.009 / 2;
 
-  const vb::StoneOverlapResult apart = vb::check_stone_overlaps(
-      tracks, {flat_pair({0.1, 0.2, 0.0}, {0.1 + a_sum + 3e-4, 0.2, 0.0})});
+  const vb::StoneOverlapResult apart =
+      vb::check_stone_overlaps(tracks, {flat_pair({0.1, 0.2, 0.0}, {0.1, 0.2, c_sum + 3e-4})});
   EXPECT_EQ(apart.pairs_measured, 1u);
   EXPECT_NEAR(apart.min_gap_m, 3e-4, 1e-15);
   EXPECT_TRUE(apart.overlaps.empty());
