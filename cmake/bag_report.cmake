@@ -6,6 +6,7 @@ include_directories(${catkin_INCLUDE_DIRS})
 add_library(virtual_go_bag_report
   src/bag/stamp_statistics.cpp
   src/bag/physics_check.cpp
+  src/bag/stone_overlap.cpp
   src/bag/thresholds.cpp
   src/bag/options.cpp
   src/bag/report.cpp

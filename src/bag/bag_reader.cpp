@@ -11,7 +11,9 @@
 #include <tf2_msgs/TFMessage.h>
 #include <virtual_go/StoneEvent.h>
 #include <virtual_go/StoneInfo.h>
+#include <virtual_go/StoneStates.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
 #include <map>
@@ -31,6 +33,7 @@ namespace {
 constexpr char kInfoType[] = "virtual_go/StoneInfo";
 constexpr char kEventType[] = "virtual_go/StoneEvent";
 constexpr char kOdomType[] = "nav_msgs/Odometry";
+constexpr char kStonesType[] = "virtual_go/StoneStates";
 constexpr char kTfType[] = "tf2_msgs/TFMessage";
 
 std::int64_t to_ns(const ros::Time& t) { return static_cast<std::int64_t>(t.toNSec()); }
@@ -124,6 +127,7 @@ class Reader {
     info_topic_ = pick(ns_ + "/info", kInfoType, "~info");
     out_.odom_topic = pick(ns_ + "/odom", kOdomType, "~odom");
     out_.events_topic = pick(ns_ + "/events", kEventType, "~events");
+    out_.stones_topic = pick(ns_ + "/stones", kStonesType, "~stones");
     pose_topic_ = ns_ + "/pose";
   }
 
@@ -158,6 +162,7 @@ class Reader {
       if (topic == info_topic_) read_info(m);
       if (topic == out_.odom_topic) read_odom(m);
       if (topic == out_.events_topic) read_event(m);
+      if (topic == out_.stones_topic) read_stones(m);
     } catch (const CorruptMessage& e) {
       // One bad message is skipped and named; the rest of the bag is read.
       if (++corrupt_ <= kCorruptNamed) {
@@ -192,6 +197,7 @@ class Reader {
     for (TopicStamps& t : out_.topics) {
       if (t.topic == "/tf " + world + "->" + stone) t.at_node_rate = true;
     }
+    attach_tf_poses(world);
     if (out_.message_count == 0) {
       out_.problems.push_back("the bag holds no messages");
       return;
@@ -200,7 +206,7 @@ class Reader {
       out_.problems.push_back("no virtual_go/StoneInfo message (looked for " + ns_ +
                               "/info): physics check skipped");
     }
-    if (out_.odom.empty()) {
+    if (out_.odom.empty() && out_.stone_tracks.empty()) {
       out_.problems.push_back("no nav_msgs/Odometry message (looked for " + ns_ +
                               "/odom): physics check skipped");
     }
@@ -255,7 +261,101 @@ class Reader {
           topic_stamps(m.getTopic() + " " + t.header.frame_id + "->" + t.child_frame_id,
                        "geometry_msgs/TransformStamped");
       row.stamps_ns.push_back(to_ns(t.header.stamp));
+      // Poses of frames that may be stones (~stones names them): kept until finish().
+      if (!out_.stones_topic.empty()) {
+        OdomSample s;
+        s.stamp_ns = to_ns(t.header.stamp);
+        tf2::fromMsg(t.transform.translation, s.position_world);
+        tf2::fromMsg(t.transform.rotation, s.orientation_raw);
+        s.has_twist = false;
+        tf_poses_[t.child_frame_id].push_back({t.header.frame_id, s});
+      }
     }
+  }
+
+  // One ~stones message: a state per stone (its track) and the snapshot of all poses.
+  void read_stones(const rosbag::MessageInstance& m) {
+    const std::optional<StoneStates> msg = decode<StoneStates>(m, bytes_);
+    if (!msg) return;
+    const std::size_t n = msg->name.size();
+    if (msg->color.size() != n || msg->width.size() != n || msg->height.size() != n ||
+        msg->mass.size() != n || msg->pose.size() != n || msg->twist.size() != n) {
+      throw CorruptMessage("a ~stones message's arrays differ in length (" + std::to_string(n) +
+                           " names)");
+    }
+    StonesSnapshot snap;
+    snap.stamp_ns = to_ns(msg->header.stamp);
+    for (std::size_t i = 0; i < n; ++i) {
+      const auto [it, added] = track_of_.emplace(msg->name[i], out_.stone_tracks.size());
+      if (added) {
+        StoneTrack t;
+        t.name = msg->name[i];
+        t.color = msg->color[i];
+        t.width_m = msg->width[i];
+        t.height_m = msg->height[i];
+        t.mass_kg = msg->mass[i];
+        out_.stone_tracks.push_back(t);
+      }
+      OdomSample s;
+      s.stamp_ns = snap.stamp_ns;
+      tf2::fromMsg(msg->pose[i].position, s.position_world);
+      tf2::fromMsg(msg->pose[i].orientation, s.orientation_raw);
+      // ~stones carries the world twist; the check reads it as ~odom's, in the stone frame.
+      Eigen::Vector3d v_world, w_world;
+      tf2::fromMsg(msg->twist[i].linear, v_world);
+      tf2::fromMsg(msg->twist[i].angular, w_world);
+      const Eigen::Quaterniond q_inverse = s.orientation_raw.normalized().conjugate();
+      s.velocity_body = q_inverse * v_world;
+      s.angular_velocity_body = q_inverse * w_world;
+      out_.stone_tracks[it->second].samples.push_back(s);
+      snap.track.push_back(it->second);
+      snap.position_world.push_back(s.position_world);
+      snap.orientation_raw.push_back(s.orientation_raw);
+    }
+    out_.snapshots.push_back(std::move(snap));
+  }
+
+  // The /tf poses (world -> a stone's name) join that stone's ~stones states, in stamp order; a
+  // pose bitwise equal to one at the same stamp adds nothing and is dropped.
+  void attach_tf_poses(const std::string& world) {
+    for (TopicStamps& t : out_.topics) {
+      for (const StoneTrack& track : out_.stone_tracks) {
+        if (t.topic == "/tf " + world + "->" + track.name && !t.at_node_rate) t.on_change = true;
+      }
+    }
+    auto same = [](const OdomSample& a, const OdomSample& b) {
+      return a.stamp_ns == b.stamp_ns &&
+             std::memcmp(a.position_world.data(), b.position_world.data(), 3 * sizeof(double)) ==
+                 0 &&
+             std::memcmp(a.orientation_raw.coeffs().data(), b.orientation_raw.coeffs().data(),
+                         4 * sizeof(double)) == 0;
+    };
+    for (StoneTrack& track : out_.stone_tracks) {
+      const auto found = tf_poses_.find(track.name);
+      if (found == tf_poses_.end()) continue;
+      std::vector<OdomSample>& samples = track.samples;
+      for (const auto& [parent, sample] : found->second) {
+        if (parent == world) samples.push_back(sample);
+      }
+      std::stable_sort(
+          samples.begin(), samples.end(),
+          [](const OdomSample& a, const OdomSample& b) { return a.stamp_ns < b.stamp_ns; });
+      std::vector<OdomSample> kept;
+      kept.reserve(samples.size());
+      for (const OdomSample& s : samples) {
+        bool duplicate = false;
+        for (auto k = kept.rbegin(); k != kept.rend() && k->stamp_ns == s.stamp_ns; ++k) {
+          if (same(*k, s) && (!s.has_twist || !k->has_twist)) {
+            if (s.has_twist) *k = s;  // the state with the twist stays
+            duplicate = true;
+            break;
+          }
+        }
+        if (!duplicate) kept.push_back(s);
+      }
+      samples = std::move(kept);
+    }
+    tf_poses_.clear();
   }
 
   // Once per topic: the bag holds `what` in another version of its message type M.
@@ -361,6 +461,9 @@ class Reader {
   std::set<std::string> latched_;
   std::set<std::string> other_version_;  // topics already named as another message version
   std::map<std::string, std::size_t> index_;
+  std::map<std::string, std::size_t> track_of_;  // stone name -> Recording::stone_tracks index
+  // /tf poses by child frame, with their parent frame, until finish() knows the world frame.
+  std::map<std::string, std::vector<std::pair<std::string, OdomSample>>> tf_poses_;
 };
 
 }  // namespace

@@ -51,13 +51,17 @@ energy and world angular momentum drift, orientation and position error against 
 closed form from the event's exact instant, Jellett's integral); contact (slide, roll, rim:
 energy never rising, Jellett's integral on a cap without rolling resistance or spinning
 friction); rest (every sample bitwise still); with the board in ~info, every sample's gap above
-the board's top or the table.
+the board's top or the table. Every other stone of ~stones is held to the same checks on its own
+~stones states and /tf poses, split at the ~events naming it (a row per stone, checks naming
+it), and every pair of stones in one ~stones message must not overlap.
 
 options:
-  --csv FILE                  write the physics time series (one row per ~odom message)
+  --csv FILE                  write the physics time series (one row per ~odom message; the
+                              stone of ~odom only)
   --plot FILE                 write a PNG of errors and invariants over time (needs gnuplot)
   --strict                    exit 1 when any figure is over its limit
-  --node-namespace NS         the node's topics are NS/info, NS/odom, NS/events (default /stone;
+  --node-namespace NS         the node's topics are NS/info, NS/odom, NS/events, NS/stones
+                              (default /stone;
                               a topic not found there is taken by message type if unique)
   --max-orientation-error R   rad; default from the integrator in ~info, dt and |w| (see below)
   --max-position-error M      m

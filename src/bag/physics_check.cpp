@@ -6,6 +6,7 @@
 #include <limits>
 #include <optional>
 
+#include "virtual_go/body/mass_properties.h"
 #include "virtual_go/body/rigid_body.h"
 #include "virtual_go/common/formatting.h"
 #include "virtual_go/common/sim_time.h"
@@ -292,6 +293,7 @@ PhysicsResult check_physics(const RecordingInfo& info, const std::vector<OdomSam
         states.back().orientation.coeffs().setConstant(nan);
         continue;
       }
+      if (!odom[i].has_twist) continue;  // a /tf pose: no velocities, no energy or L
       const RigidBody body(model, states.back());
       scale = std::max(scale, energy_scale(body, info.gravity_world));
       if (l0_zero) l_scale = std::max(l_scale, states.back().angular_momentum_world.norm());
@@ -320,8 +322,8 @@ PhysicsResult check_physics(const RecordingInfo& info, const std::vector<OdomSam
             same_bits(o.position_world, rest_reference->position_world) &&
             std::memcmp(o.orientation_raw.coeffs().data(),
                         rest_reference->orientation_raw.coeffs().data(), sizeof(double) * 4) == 0 &&
-            (o.velocity_body.array() == 0.0).all() &&
-            (o.angular_velocity_body.array() == 0.0).all();
+            (!o.has_twist || ((o.velocity_body.array() == 0.0).all() &&
+                              (o.angular_velocity_body.array() == 0.0).all()));
         if (!still) {
           ++seg.rest_moved;
           seg.rest_max_move_m = std::fmax(
@@ -336,24 +338,25 @@ PhysicsResult check_physics(const RecordingInfo& info, const std::vector<OdomSam
           p.gap_m = board->nearest(s).lens.gap_m;
           seg.min_gap_m = std::fmin(seg.min_gap_m, p.gap_m);
         }
-        if (start && board && seg.jellett_conserved) {
+        if (start && board && seg.jellett_conserved && o.has_twist) {
           p.jellett_drift =
               j_scale > 0.0 ? std::abs(jellett(board->lens(), s, cap_sign) - j0) / j_scale : 0.0;
           seg.max_jellett_drift = std::fmax(seg.max_jellett_drift, p.jellett_drift);
         }
         const RigidBody body(model, s);
-        p.angular_speed = body.angular_velocity_world().norm();
-        if (start && seg.kind == SegmentKind::contact) {
+        p.angular_speed = o.has_twist ? body.angular_velocity_world().norm() : nan;
+        if (start && seg.kind == SegmentKind::contact && o.has_twist) {
           const double e = body.total_energy(info.gravity_world);
           p.energy_rise = scale > 0.0 ? (e - lowest_energy) / scale : 0.0;
           lowest_energy = std::min(lowest_energy, e);
           seg.max_energy_rise = std::fmax(seg.max_energy_rise, p.energy_rise);
         }
-        if (start) {
+        if (start && o.has_twist) {
           p.energy_drift =
               scale > 0.0 ? std::abs(body.total_energy(info.gravity_world) - e0) / scale : 0.0;
           p.momentum_drift = l_scale > 0.0 ? (s.angular_momentum_world - l0).norm() / l_scale : 0.0;
         } else {
+          // No start state, or a /tf pose (no velocities): held to the closed form and the gap.
           p.energy_drift = p.momentum_drift = nan;
         }
         std::optional<RigidBodyState> predicted;
@@ -414,6 +417,27 @@ PhysicsResult check_physics(const RecordingInfo& info, const std::vector<OdomSam
     result.segments.push_back(seg);
   }
   return result;
+}
+
+std::vector<SegmentEvent> events_of_stone(const std::vector<SegmentEvent>& events,
+                                          const std::string& name, const RecordingInfo& info) {
+  std::vector<SegmentEvent> own;
+  for (const SegmentEvent& e : events) {
+    if (e.stone == name || (e.stone.empty() && name == info.stone_frame)) own.push_back(e);
+  }
+  return own;
+}
+
+RecordingInfo info_of_stone(const RecordingInfo& info, const StoneTrack& track) {
+  const MassProperties mass =
+      MassProperties::of_lens_with_mass(LensShape(track.width_m, track.height_m), track.mass_kg);
+  RecordingInfo out = info;
+  out.stone_frame = track.name;
+  out.width_m = track.width_m;
+  out.height_m = track.height_m;
+  out.mass = mass.mass();
+  out.principal_moments_body = mass.principal_moments_body();
+  return out;
 }
 
 }  // namespace bag

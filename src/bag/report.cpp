@@ -9,6 +9,7 @@
 #include <iomanip>
 #include <sstream>
 
+#include "virtual_go/common/formatting.h"
 #include "virtual_go/common/sim_time.h"
 #include "virtual_go/common/validation.h"
 
@@ -52,6 +53,46 @@ void print_stamp_events(std::ostream& out, const std::string& topic, const char*
   }
 }
 
+// One row per stone of ~stones: its segments and the worst of each figure over them.
+void print_stones(std::ostream& out, const Report& report) {
+  out << "\nstones (" << report.recording.stones_topic << " and /tf, events from "
+      << (report.recording.events_topic.empty() ? "nowhere" : report.recording.events_topic)
+      << "), worst over each stone's segments:\n";
+  out << "  " << std::left << std::setw(14) << "stone" << std::setw(7) << "color" << std::right
+      << std::setw(6) << "segs" << std::setw(8) << "samples" << std::setw(8) << "flights"
+      << std::setw(11) << "orient rad" << std::setw(11) << "pos m" << std::setw(11) << "energy"
+      << std::setw(11) << "E rise" << std::setw(11) << "gap m" << std::setw(8) << "rest mv"
+      << "\n";
+  for (const StonePhysics& stone : report.stones) {
+    out << "  " << std::left << std::setw(14) << cut_user_text(stone.name, 13) << std::setw(7)
+        << cut_user_text(stone.color, 6) << std::right;
+    if (!stone.physics) {
+      out << "  " << stone.note << "\n";
+      continue;
+    }
+    std::size_t samples = 0, flights = 0, moved = 0;
+    double orient = 0.0, pos = 0.0, energy = 0.0, rise = 0.0, gap = INFINITY;
+    bool predicted = false, board = false;
+    for (const SegmentResult& s : stone.physics->segments) {
+      samples += s.samples;
+      moved += s.rest_moved;
+      if (s.samples == 0) continue;
+      if (s.kind == SegmentKind::flight) ++flights;
+      if (s.predicted) predicted = true;
+      if (s.predicted) orient = std::fmax(orient, s.max_orientation_error);
+      if (s.predicted) pos = std::fmax(pos, s.max_position_error);
+      if (s.kind != SegmentKind::contact) energy = std::fmax(energy, s.max_energy_drift);
+      if (s.kind == SegmentKind::contact) rise = std::fmax(rise, s.max_energy_rise);
+      if (s.board) gap = std::fmin(gap, s.min_gap_m);
+      board = board || s.board;
+    }
+    out << std::setw(6) << stone.physics->segments.size() << std::setw(8) << samples << std::setw(8)
+        << flights << std::setw(11) << (predicted ? sci(orient) : "n/a") << std::setw(11)
+        << (predicted ? sci(pos) : "n/a") << std::setw(11) << sci(energy) << std::setw(11)
+        << sci(rise) << std::setw(11) << (board ? sci(gap) : "-") << std::setw(8) << moved << "\n";
+  }
+}
+
 }  // namespace
 
 bool Report::checks_pass() const {
@@ -65,25 +106,44 @@ Report analyse(Recording recording, const LimitOverrides& limits) {
   for (const TopicStamps& t : r.recording.topics) {
     r.stats.push_back(compute_stamp_statistics(t.stamps_ns));
   }
-  if (r.recording.info && !r.recording.odom.empty()) {
+  const Recording& rec = r.recording;
+  if (rec.info && (!rec.odom.empty() || !rec.stone_tracks.empty())) {
     // Only ~info itself is blamed on ~info; a bad event or sample affects its own segment
     // inside check_physics, and anything else that fails is named as what it is.
     bool info_ok = false;
     try {
-      model_from_info(*r.recording.info);
+      model_from_info(*rec.info);
       info_ok = true;
     } catch (const std::exception& e) {
       r.problems.push_back(std::string("~info cannot describe the motion: ") + e.what());
     }
-    if (info_ok) {
+    if (info_ok && !rec.odom.empty()) {
       try {
-        r.physics = check_physics(*r.recording.info, r.recording.odom, r.recording.events);
+        r.physics = check_physics(*rec.info, rec.odom,
+                                  events_of_stone(rec.events, rec.info->stone_frame, *rec.info));
       } catch (const std::exception& e) {
         r.problems.push_back(std::string("physics check failed: ") + e.what());
       }
     }
+    for (const StoneTrack& track : rec.stone_tracks) {
+      if (!info_ok) break;
+      if (track.name == rec.info->stone_frame && !rec.odom.empty()) continue;  // ~odom's stone
+      StonePhysics stone;
+      stone.name = track.name;
+      stone.color = track.color;
+      try {
+        stone.info = info_of_stone(*rec.info, track);
+        stone.physics = check_physics(stone.info, track.samples,
+                                      events_of_stone(rec.events, track.name, *rec.info));
+      } catch (const std::exception& e) {
+        stone.note = "stone " + cut_user_text(track.name) + " cannot be checked: " + e.what();
+      }
+      r.stones.push_back(std::move(stone));
+    }
   }
-  r.checks = run_checks(r.recording, r.stats, r.physics ? &*r.physics : nullptr, limits);
+  if (!rec.snapshots.empty()) r.overlap = check_stone_overlaps(rec.stone_tracks, rec.snapshots);
+  r.checks = run_checks(r.recording, r.stats, r.physics ? &*r.physics : nullptr, limits, r.stones,
+                        r.overlap ? &*r.overlap : nullptr);
   return r;
 }
 
@@ -105,6 +165,8 @@ void print_report(std::ostream& out, const Report& report) {
         << std::right << std::setw(7) << s.count;
     if (t.aperiodic) {
       out << std::setw(10) << "latched" << std::setw(30) << "" << std::setw(6) << "-";
+    } else if (t.on_change) {
+      out << std::setw(10) << "on move" << std::setw(30) << "" << std::setw(6) << "-";
     } else {
       out << std::setw(10) << fixed(s.mean_rate_hz, 2) << std::setw(10)
           << fixed(s.period_p50_s * 1e3, 3) << std::setw(10) << fixed(s.period_p99_s * 1e3, 3)
@@ -114,7 +176,9 @@ void print_report(std::ostream& out, const Report& report) {
   }
   for (std::size_t i = 0; i < rec.topics.size(); ++i) {
     if (rec.topics[i].aperiodic) continue;
-    print_stamp_events(out, rec.topics[i].topic, "gap", report.stats[i].gaps);
+    if (!rec.topics[i].on_change) {
+      print_stamp_events(out, rec.topics[i].topic, "gap", report.stats[i].gaps);
+    }
     print_stamp_events(out, rec.topics[i].topic, "repeated stamp", report.stats[i].repeated);
     print_stamp_events(out, rec.topics[i].topic, "backwards stamp", report.stats[i].non_increasing);
   }
@@ -209,6 +273,29 @@ void print_report(std::ostream& out, const Report& report) {
     };
     print_non_finite(p.non_finite_odom, "~odom samples");
     print_non_finite(p.non_finite_events, "~events messages");
+  }
+
+  if (!report.stones.empty()) print_stones(out, report);
+  if (report.overlap) {
+    const StoneOverlapResult& o = *report.overlap;
+    out << "\nstone overlap (" << rec.stones_topic << ", " << o.snapshots
+        << " messages with two stones or more, " << o.pairs_measured
+        << " pair distances within reach): ";
+    if (std::isfinite(o.min_gap_m)) {
+      out << "smallest gap " << sci(o.min_gap_m) << " m, " << o.stone_a << " and " << o.stone_b
+          << " at " << short_stamp_text(o.stamp_ns) << " s\n";
+    } else {
+      out << "no two stones within reach of each other\n";
+    }
+    constexpr std::size_t kShown = 10;
+    for (std::size_t i = 0; i < o.overlaps.size() && i < kShown; ++i) {
+      const PairOverlap& p = o.overlaps[i];
+      out << "  overlap " << p.stone_a << " and " << p.stone_b << ": " << sci(p.depth_m)
+          << " m deep at " << short_stamp_text(p.stamp_ns) << " s (" << p.stamps << " messages)\n";
+    }
+    if (o.overlaps.size() > kShown) {
+      out << "  ... " << o.overlaps.size() - kShown << " more overlapping pairs\n";
+    }
   }
 
   out << "\nchecks:\n";

@@ -34,6 +34,8 @@ const ContactLimit kContactLimits[kContactLimitCount] = {
      "|J - J0| / (R max|L|): flights; cap contact when l_r = l_s = 0"},
     {"rest motion", "--max-rest-moves", 0.0, "samples",
      "rest segments: samples not bitwise equal to the first or not at zero velocity"},
+    {"stone overlap (m)", "--max-overlap", 1e-9, "m",
+     "two stones of one ~stones message: penetration depth of the two lenses (< 0: apart)"},
 };
 
 }  // namespace
@@ -102,7 +104,9 @@ PhysicsBounds physics_bounds(const std::string& integrator, double dt_s,
 }
 
 std::vector<Check> run_checks(const Recording& recording, const std::vector<StampStatistics>& stats,
-                              const PhysicsResult* physics, const LimitOverrides& overrides) {
+                              const PhysicsResult* physics, const LimitOverrides& overrides,
+                              const std::vector<StonePhysics>& stones,
+                              const StoneOverlapResult* overlap) {
   std::vector<Check> checks;
   auto add = [&](std::string figure, std::string subject, double value, double limit,
                  std::string basis) {
@@ -111,10 +115,24 @@ std::vector<Check> run_checks(const Recording& recording, const std::vector<Stam
     checks.push_back({std::move(figure), std::move(subject), value, limit, pass, std::move(basis)});
   };
 
+  // The /tf rows of the stones of ~stones: one check per figure over all of them (a game has
+  // hundreds), naming the first row at fault.
+  std::size_t stone_rows = 0, repeated = 0, non_increasing = 0;
+  std::string first_repeated, first_non_increasing;
   for (std::size_t i = 0; i < recording.topics.size() && i < stats.size(); ++i) {
     const TopicStamps& topic = recording.topics[i];
     const StampStatistics& s = stats[i];
     if (topic.aperiodic || !topic.header_stamps) continue;
+    if (topic.on_change) {
+      ++stone_rows;
+      if (first_repeated.empty() && !s.repeated.empty()) first_repeated = topic.topic;
+      if (first_non_increasing.empty() && !s.non_increasing.empty()) {
+        first_non_increasing = topic.topic;
+      }
+      repeated += s.repeated.size();
+      non_increasing += s.non_increasing.size();
+      continue;
+    }
     add("repeated stamps", topic.topic, static_cast<double>(s.repeated.size()), 0.0,
         "stamps must strictly increase");
     add("non-increasing stamps", topic.topic, static_cast<double>(s.non_increasing.size()), 0.0,
@@ -129,7 +147,28 @@ std::vector<Check> run_checks(const Recording& recording, const std::vector<Stam
     }
   }
 
-  if (physics == nullptr || !recording.info) return checks;
+  if (stone_rows > 0) {
+    const std::string rows = "/tf of " + std::to_string(stone_rows) + " stones";
+    add("repeated stamps", rows, static_cast<double>(repeated), 0.0,
+        first_repeated.empty() ? "stamps must strictly increase" : "first in " + first_repeated);
+    add("non-increasing stamps", rows, static_cast<double>(non_increasing), 0.0,
+        first_non_increasing.empty() ? "stamps must strictly increase"
+                                     : "first in " + first_non_increasing);
+  }
+
+  const double overlap_limit = overrides.contact[kOverlap] ? *overrides.contact[kOverlap]
+                                                           : contact_limit(kOverlap).default_limit;
+  if (overlap != nullptr && std::isfinite(overlap->min_gap_m)) {
+    std::ostringstream basis;
+    basis << contact_limit(kOverlap).option << ", m; at " << std::fixed << std::setprecision(6)
+          << to_seconds(overlap->stamp_ns) << " s; "
+          << std::count_if(overlap->overlaps.begin(), overlap->overlaps.end(),
+                           [&](const PairOverlap& o) { return o.depth_m > overlap_limit; })
+          << " pairs over the limit";
+    add(contact_limit(kOverlap).figure, "stones " + overlap->stone_a + ", " + overlap->stone_b,
+        -overlap->min_gap_m, overlap_limit, basis.str());
+  }
+  if (!recording.info || (physics == nullptr && stones.empty())) return checks;
   // A message with a NaN or infinity has no figures, and the maxima skip NaN: the count
   // itself has to fail --strict.
   auto add_non_finite = [&](const NonFiniteValues& v, const std::string& topic) {
@@ -141,11 +180,32 @@ std::vector<Check> run_checks(const Recording& recording, const std::vector<Stam
     }
     add("non-finite values", topic, static_cast<double>(v.count), 0.0, basis);
   };
-  add_non_finite(physics->non_finite_odom, recording.odom_topic);
-  if (!recording.events.empty()) {
-    add_non_finite(physics->non_finite_events, recording.events_topic);
+  if (physics != nullptr) {
+    add_non_finite(physics->non_finite_odom, recording.odom_topic);
+    if (!recording.events.empty()) {
+      add_non_finite(physics->non_finite_events, recording.events_topic);
+    }
   }
-  const RecordingInfo& info = *recording.info;
+  if (!stones.empty()) {
+    NonFiniteValues samples, events;
+    auto sum = [](NonFiniteValues& total, const NonFiniteValues& v) {
+      if (v.count > 0 && (total.count == 0 || v.first_stamp_ns < total.first_stamp_ns)) {
+        total.first_stamp_ns = v.first_stamp_ns;
+        total.first_field = v.first_field;
+      }
+      total.count += v.count;
+    };
+    for (const StonePhysics& s : stones) {
+      if (!s.physics) {
+        add("stone checked", "stone " + s.name, NAN, 0.0, s.note);
+        continue;
+      }
+      sum(samples, s.physics->non_finite_odom);
+      sum(events, s.physics->non_finite_events);
+    }
+    add_non_finite(samples, recording.stones_topic + " and /tf");
+    if (!recording.events.empty()) add_non_finite(events, recording.events_topic + " (stones)");
+  }
   // Per figure, the segment closest to (or furthest over) its own limit, and every other
   // segment over it (a violation is named per segment, with its numbers).
   constexpr int kFlightFigures = 5;
@@ -159,77 +219,92 @@ std::vector<Check> run_checks(const Recording& recording, const std::vector<Stam
   std::vector<Check> over;  // segments over a limit, other than the worst
   const char* names[kFlightFigures] = {"max | |q| - 1 |", "energy drift", "momentum drift",
                                        "orientation error (rad)", "position error (m)"};
-  for (std::size_t k = 0; k < physics->segments.size(); ++k) {
-    const SegmentResult& seg = physics->segments[k];
-    if (seg.samples == 0) continue;
-    PhysicsBounds b;
-    try {
-      b = physics_bounds(info.integrator, info.dt_s, seg, info.gravity_world.norm(), overrides);
-    } catch (const InvalidArgument& e) {
-      add("physics bound", "segment " + std::to_string(k), NAN, 0.0, e.what());
-      return checks;
-    }
-    const bool flight = seg.kind == SegmentKind::flight;
-    const bool rest = seg.kind == SegmentKind::rest;
-    // What each figure is for this segment; NaN computes nothing, `applies` false skips it.
-    double values[kFigures] = {seg.max_quat_norm_error,
-                               seg.max_energy_drift,
-                               seg.max_momentum_drift,
-                               seg.predicted ? seg.max_orientation_error : NAN,
-                               seg.predicted ? seg.max_position_error : NAN,
-                               seg.max_energy_rise,
-                               -seg.min_gap_m,
-                               seg.max_jellett_drift,
-                               static_cast<double>(seg.rest_moved)};
-    const bool applies[kFigures] = {true,
-                                    flight || rest,
-                                    flight || rest,
-                                    flight,
-                                    flight,
-                                    seg.kind == SegmentKind::contact,
-                                    seg.board,
-                                    seg.jellett_conserved,
-                                    rest};
-    double limits[kFigures] = {b.quat_norm_error, b.energy_drift, b.momentum_drift,
-                               b.orientation_error, b.position_error};
-    for (int c = 0; c < kContactLimitCount; ++c) {
-      limits[kFlightFigures + c] =
-          overrides.contact[c] ? *overrides.contact[c] : contact_limit(c).default_limit;
-    }
-    const std::string kind = " (" + segment_kind_name(seg.kind) + ", " + seg.plan.reason + ")";
-    for (int f = 0; f < kFigures; ++f) {
-      if (!applies[f]) continue;
-      double ratio = INFINITY;  // a figure that could not be computed is the worst
-      if (std::isfinite(values[f])) {
-        // A clearance (negative penetration) gives a negative ratio: the smallest is the worst.
-        ratio = limits[f] > 0.0 ? values[f] / limits[f]
-                                : (values[f] > limits[f] ? INFINITY : values[f] - limits[f]);
+  // Segments of every stone compete for the worst of each figure; with several stones a
+  // segment's subject names its stone.
+  struct Checked {
+    const PhysicsResult* physics;
+    const RecordingInfo* info;
+    std::string prefix;
+  };
+  std::vector<Checked> checked;
+  if (physics != nullptr) {
+    checked.push_back({physics, &*recording.info,
+                       stones.empty() ? "" : "stone " + recording.info->stone_frame + " "});
+  }
+  for (const StonePhysics& s : stones) {
+    if (s.physics) checked.push_back({&*s.physics, &s.info, "stone " + s.name + " "});
+  }
+  for (const Checked& stone : checked) {
+    const RecordingInfo& info = *stone.info;
+    for (std::size_t k = 0; k < stone.physics->segments.size(); ++k) {
+      const SegmentResult& seg = stone.physics->segments[k];
+      if (seg.samples == 0) continue;
+      PhysicsBounds b;
+      try {
+        b = physics_bounds(info.integrator, info.dt_s, seg, info.gravity_world.norm(), overrides);
+      } catch (const InvalidArgument& e) {
+        add("physics bound", stone.prefix + "segment " + std::to_string(k), NAN, 0.0, e.what());
+        return checks;
       }
-      std::string basis;
-      if (f == 0) {
-        basis = "a published quaternion is unit";
-      } else if (f < kFlightFigures) {
-        basis = seg.predicted || f < 3 ? b.basis : seg.note;
-      } else {
-        const ContactLimit& c = contact_limit(f - kFlightFigures);
-        basis = std::string(c.option) + ", " + c.unit;
-        if (f - kFlightFigures == kRestMoves && seg.rest_moved > 0) {
-          std::ostringstream moved;
-          moved << "; largest move " << seg.rest_max_move_m << " m";
-          basis += moved.str();
+      const bool flight = seg.kind == SegmentKind::flight;
+      const bool rest = seg.kind == SegmentKind::rest;
+      // What each figure is for this segment; NaN computes nothing, `applies` false skips it.
+      double values[kFigures] = {seg.max_quat_norm_error,
+                                 seg.max_energy_drift,
+                                 seg.max_momentum_drift,
+                                 seg.predicted ? seg.max_orientation_error : NAN,
+                                 seg.predicted ? seg.max_position_error : NAN,
+                                 seg.max_energy_rise,
+                                 -seg.min_gap_m,
+                                 seg.max_jellett_drift,
+                                 static_cast<double>(seg.rest_moved),
+                                 NAN};
+      const bool applies[kFigures] = {true,           flight || rest,
+                                      flight || rest, flight,
+                                      flight,         seg.kind == SegmentKind::contact,
+                                      seg.board,      seg.jellett_conserved,
+                                      rest,           false};  // overlap: per pair of stones, below
+      double limits[kFigures] = {b.quat_norm_error, b.energy_drift, b.momentum_drift,
+                                 b.orientation_error, b.position_error};
+      for (int c = 0; c < kContactLimitCount; ++c) {
+        limits[kFlightFigures + c] =
+            overrides.contact[c] ? *overrides.contact[c] : contact_limit(c).default_limit;
+      }
+      const std::string kind = " (" + segment_kind_name(seg.kind) + ", " + seg.plan.reason + ")";
+      for (int f = 0; f < kFigures; ++f) {
+        if (!applies[f]) continue;
+        double ratio = INFINITY;  // a figure that could not be computed is the worst
+        if (std::isfinite(values[f])) {
+          // A clearance (negative penetration) gives a negative ratio: the smallest is the worst.
+          ratio = limits[f] > 0.0 ? values[f] / limits[f]
+                                  : (values[f] > limits[f] ? INFINITY : values[f] - limits[f]);
         }
-      }
-      const Check check{f < kFlightFigures ? names[f] : contact_limit(f - kFlightFigures).figure,
-                        "segment " + std::to_string(k) + kind,
-                        values[f],
-                        limits[f],
-                        std::isfinite(values[f]) && values[f] <= limits[f],
-                        basis};
-      if (!worst[f].seen || ratio > worst[f].ratio) {
-        if (worst[f].seen && !worst[f].check.pass) over.push_back(worst[f].check);
-        worst[f] = {true, ratio, check};
-      } else if (!check.pass) {
-        over.push_back(check);
+        std::string basis;
+        if (f == 0) {
+          basis = "a published quaternion is unit";
+        } else if (f < kFlightFigures) {
+          basis = seg.predicted || f < 3 ? b.basis : seg.note;
+        } else {
+          const ContactLimit& c = contact_limit(f - kFlightFigures);
+          basis = std::string(c.option) + ", " + c.unit;
+          if (f - kFlightFigures == kRestMoves && seg.rest_moved > 0) {
+            std::ostringstream moved;
+            moved << "; largest move " << seg.rest_max_move_m << " m";
+            basis += moved.str();
+          }
+        }
+        const Check check{f < kFlightFigures ? names[f] : contact_limit(f - kFlightFigures).figure,
+                          stone.prefix + "segment " + std::to_string(k) + kind,
+                          values[f],
+                          limits[f],
+                          std::isfinite(values[f]) && values[f] <= limits[f],
+                          basis};
+        if (!worst[f].seen || ratio > worst[f].ratio) {
+          if (worst[f].seen && !worst[f].check.pass) over.push_back(worst[f].check);
+          worst[f] = {true, ratio, check};
+        } else if (!check.pass) {
+          over.push_back(check);
+        }
       }
     }
   }

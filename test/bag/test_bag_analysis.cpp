@@ -387,3 +387,148 @@ TEST(Options, Parse) {
 }
 
 }  // namespace
+
+namespace {
+
+// A placed stone of the default set's black size (22.2 mm wide, size 33: 9.2 mm).
+vb::StoneTrack track(const std::string& name, double width_m = 0.0222, double height_m = 0.0092) {
+  vb::StoneTrack t;
+  t.name = name;
+  t.color = "black";
+  t.width_m = width_m;
+  t.height_m = height_m;
+  t.mass_kg = 5e-3;
+  return t;
+}
+
+// Two flat stones (axis up) at their centres, one ~stones message.
+vb::StonesSnapshot flat_pair(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  vb::StonesSnapshot s;
+  s.stamp_ns = 7 * kMs;
+  s.track = {0, 1};
+  s.position_world = {a, b};
+  s.orientation_raw = {Eigen::Quaterniond::Identity(), Eigen::Quaterniond::Identity()};
+  return s;
+}
+
+}  // namespace
+
+// Two flat lenses one above the other: the caps' tops on the common axis are the closest points,
+// gap = dz - c_A - c_B, and overlapping the shortest way apart is straight up (depth
+// c_A + c_B - dz). Side by side with the centres farther apart than a_A + a_B (rim to rim: gap
+// d - a_A - a_B > 0) they are not measured.
+TEST(StoneOverlap, FlatStonesAgainstTheirClosedForms) {
+  const std::vector<vb::StoneTrack> tracks = {track("black_1"), track("white_1", 0.0219, 0.009)};
+  const double a_sum = 0.0222 / 2 + 0.0219 / 2, c_sum = 0.0092 / 2 + 0.009 / 2;
+
+  const vb::StoneOverlapResult apart =
+      vb::check_stone_overlaps(tracks, {flat_pair({0.1, 0.2, 0.0}, {0.1, 0.2, c_sum + 3e-4})});
+  EXPECT_EQ(apart.pairs_measured, 1u);
+  EXPECT_NEAR(apart.min_gap_m, 3e-4, 1e-15);
+  EXPECT_TRUE(apart.overlaps.empty());
+
+  const vb::StoneOverlapResult stacked =
+      vb::check_stone_overlaps(tracks, {flat_pair({0.0, 0.0, 0.0}, {0.0, 0.0, c_sum - 2e-4})});
+  EXPECT_NEAR(stacked.min_gap_m, -2e-4, 1e-12);
+  ASSERT_EQ(stacked.overlaps.size(), 1u);
+  EXPECT_EQ(stacked.overlaps[0].stone_a, "black_1");
+  EXPECT_EQ(stacked.overlaps[0].stone_b, "white_1");
+  EXPECT_NEAR(stacked.overlaps[0].depth_m, 2e-4, 1e-12);
+  EXPECT_EQ(stacked.overlaps[0].stamp_ns, 7 * kMs);
+
+  const vb::StoneOverlapResult far =
+      vb::check_stone_overlaps(tracks, {flat_pair({0.0, 0.0, 0.0}, {a_sum + 1e-6, 0.0, 0.0})});
+  EXPECT_EQ(far.snapshots, 1u);
+  EXPECT_EQ(far.pairs_measured, 0u);
+  EXPECT_TRUE(std::isinf(far.min_gap_m));
+
+  // Over --max-overlap, the check names the pair.
+  vb::Recording rec;
+  const auto checks = vb::run_checks(rec, {}, nullptr, vb::LimitOverrides{}, {}, &stacked);
+  ASSERT_EQ(checks.size(), 1u);
+  EXPECT_FALSE(checks[0].pass);
+  EXPECT_EQ(checks[0].subject, "stones black_1, white_1");
+  EXPECT_NEAR(checks[0].value, 2e-4, 1e-12);
+}
+
+// Several stones: each placed stone is held to its own events and samples, and a check names
+// its stone. black_1 is dropped without spin (its flight against the parabola written here),
+// black_2 is set down at rest and one of its samples is moved by 1 um; the events of both do
+// not split the initial stone's segments.
+TEST(ManyStones, EachStoneOnItsOwnEventsAndAMovedRestingStoneIsNamed) {
+  const Eigen::Vector3d g(0.0, 0.0, -9.80665);
+  const Eigen::Vector3d x0(0.05, -0.02, 0.03), v0(0.1, 0.0, 0.2);
+  vb::Recording rec;
+  rec.info = info();
+  rec.odom_topic = "/stone/odom";
+  rec.stones_topic = "/stone/stones";
+  rec.events_topic = "/stone/events";
+  for (int i = 0; i <= 10; ++i) rec.odom.push_back(odom_at(i * 20 * kMs, i * 0.02));
+  virtual_go::SegmentEvent start = event_at(0, "start");
+  const virtual_go_test::TrueState s0 = virtual_go_test::true_state(0.0);
+  start.state.position_world = s0.position;
+  start.state.orientation = s0.orientation;
+  start.state.velocity_world = s0.velocity_world;
+  start.state.angular_momentum_world = s0.angular_momentum_world;
+  start.stone = "stone";
+  rec.events.push_back(start);
+
+  vb::StoneTrack dropped = track("black_1");
+  virtual_go::SegmentEvent place = event_at(40 * kMs, "place");
+  place.stone = "black_1";
+  place.state.position_world = x0;
+  place.state.velocity_world = v0;
+  rec.events.push_back(place);
+  for (int i = 2; i <= 10; ++i) {
+    const double t = (i - 2) * 0.02;
+    vb::OdomSample o;
+    o.stamp_ns = i * 20 * kMs;
+    o.position_world = x0 + v0 * t + 0.5 * g * t * t;
+    o.velocity_body = v0 + g * t;
+    o.has_twist = i % 2 == 0;  // the odd ones are /tf poses
+    dropped.samples.push_back(o);
+  }
+  vb::StoneTrack resting = track("black_2");
+  for (const char* reason : {"place", "rest"}) {
+    virtual_go::SegmentEvent e = event_at(60 * kMs, reason);
+    e.stone = "black_2";
+    e.state.position_world = {0.0, 0.022, 0.0046};
+    rec.events.push_back(e);
+  }
+  for (int i = 3; i <= 10; ++i) {
+    vb::OdomSample o;
+    o.stamp_ns = i * 20 * kMs;
+    o.position_world = {0.0, 0.022, 0.0046};
+    resting.samples.push_back(o);
+  }
+  resting.samples[5].position_world.x() += 1e-6;
+  rec.stone_tracks = {dropped, resting};
+
+  const vb::Report report = vb::analyse(rec, vb::LimitOverrides{});
+  ASSERT_TRUE(report.physics.has_value());
+  EXPECT_EQ(report.physics->segments.size(), 1u) << "other stones' events split stone's";
+  ASSERT_EQ(report.stones.size(), 2u);
+  ASSERT_TRUE(report.stones[0].physics.has_value());
+  const vb::PhysicsResult& b1 = *report.stones[0].physics;
+  ASSERT_EQ(b1.segments.size(), 1u);
+  EXPECT_TRUE(b1.segments[0].predicted);
+  EXPECT_EQ(b1.segments[0].samples, 9u);
+  EXPECT_LT(b1.segments[0].max_position_error, 1e-15);
+  EXPECT_LT(b1.segments[0].max_energy_drift, 1e-14);
+  ASSERT_TRUE(report.stones[1].physics.has_value());
+  const vb::PhysicsResult& b2 = *report.stones[1].physics;
+  ASSERT_EQ(b2.segments.size(), 2u);
+  EXPECT_EQ(b2.segments[1].kind, vb::SegmentKind::rest);
+  EXPECT_EQ(b2.segments[1].rest_moved, 1u);
+  EXPECT_NEAR(b2.segments[1].rest_max_move_m, 1e-6, 1e-15);
+
+  std::vector<std::string> failed;
+  for (const vb::Check& c : report.checks) {
+    if (!c.pass) failed.push_back(c.figure + ": " + c.subject);
+  }
+  ASSERT_EQ(failed.size(), 1u) << ::testing::PrintToString(failed);
+  EXPECT_EQ(failed[0], "rest motion: stone black_2 segment 1 (rest, rest)");
+  std::ostringstream printed;
+  vb::print_report(printed, report);
+  EXPECT_NE(printed.str().find("black_2"), std::string::npos) << printed.str();
+}

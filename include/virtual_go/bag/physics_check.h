@@ -11,6 +11,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -132,6 +133,27 @@ struct PhysicsResult {
 // field); bad odom or event values are reported in the result instead.
 PhysicsResult check_physics(const RecordingInfo& info, const std::vector<OdomSample>& odom,
                             const std::vector<SegmentEvent>& events);
+
+// Many stones (~stones): each stone is held to the checks above on its own samples and events.
+
+// The events of one stone, in bag order: those naming it, and for the stone of ~info
+// (stone_frame) also those naming none (bags recorded before events named their stone).
+std::vector<SegmentEvent> events_of_stone(const std::vector<SegmentEvent>& events,
+                                          const std::string& name, const RecordingInfo& info);
+
+// ~info as it describes another stone of the run: the same model, gravity, dt, board and
+// materials, with the stone's own lens and mass (a uniform lens of that mass: the World's
+// stones are) and its name as stone_frame. Throws InvalidArgument naming a bad width, height or
+// mass.
+RecordingInfo info_of_stone(const RecordingInfo& info, const StoneTrack& track);
+
+struct StonePhysics {
+  std::string name;
+  std::string color;
+  RecordingInfo info;                    // info_of_stone
+  std::optional<PhysicsResult> physics;  // none when the stone cannot be checked (note says why)
+  std::string note;
+};
 
 }  // namespace bag
 }  // namespace virtual_go

@@ -21,6 +21,9 @@ struct TopicStamps {
   bool header_stamps = true;  // false: no header, the bag's receipt time is used instead
   bool aperiodic = false;     // latched or event topics: no rate, period or gap figures
   bool at_node_rate = false;  // published by the node on every tick (~pose, ~odom, tf)
+  // A stone of ~stones on /tf: every tick while it moves, once per simulated second at rest, so
+  // no rate, period or gap figures (repeated and backwards stamps still count).
+  bool on_change = false;
 };
 
 // virtual_go/StoneInfo, the part the physics check needs.
@@ -50,13 +53,36 @@ struct RecordingInfo {
   double table_spinning_friction_m = 0.0;
 };
 
-// One nav_msgs/Odometry as recorded: pose in the world, twist in the stone (body) frame.
+// One recorded state of a stone: a nav_msgs/Odometry (pose in the world, twist in the stone
+// (body) frame), an entry of ~stones (its world twist rotated into the body frame when read) or a
+// /tf transform (the pose only: has_twist false, velocities zero and unused).
 struct OdomSample {
   std::int64_t stamp_ns = 0;
   Eigen::Vector3d position_world = Eigen::Vector3d::Zero();
   Eigen::Quaterniond orientation_raw = Eigen::Quaterniond::Identity();  // not normalised
   Eigen::Vector3d velocity_body = Eigen::Vector3d::Zero();
   Eigen::Vector3d angular_velocity_body = Eigen::Vector3d::Zero();
+  bool has_twist = true;
+};
+
+// One stone named in ~stones (virtual_go/StoneStates), other than the one ~odom describes: its
+// lens and mass from ~stones, its states from ~stones and from /tf (world -> its name), in stamp
+// order (a /tf pose bitwise equal to a ~stones pose at the same stamp is kept once).
+struct StoneTrack {
+  std::string name;  // also its tf frame
+  std::string color;
+  double width_m = 0.0;
+  double height_m = 0.0;
+  double mass_kg = 0.0;
+  std::vector<OdomSample> samples;
+};
+
+// One ~stones message: every stone's pose at one stamp (the overlap check's input).
+struct StonesSnapshot {
+  std::int64_t stamp_ns = 0;
+  std::vector<std::size_t> track;  // index into Recording::stone_tracks, per stone
+  std::vector<Eigen::Vector3d> position_world;
+  std::vector<Eigen::Quaterniond> orientation_raw;
 };
 
 struct Recording {
@@ -73,6 +99,11 @@ struct Recording {
   // is skipped and named in problems), state as the message carried it (world frame, the
   // quaternion not normalised, nothing checked), output left default.
   std::vector<SegmentEvent> events;
+  // ~stones (virtual_go/StoneStates), when recorded: every stone it names, the initial stone
+  // (~info's stone_frame) included; its samples are used only when the bag has no ~odom.
+  std::string stones_topic;  // empty when none was found
+  std::vector<StoneTrack> stone_tracks;
+  std::vector<StonesSnapshot> snapshots;
   // What could not be read or found, one line each (a partial report says these).
   std::vector<std::string> problems;
 };

@@ -10,6 +10,7 @@
 #include "virtual_go/bag/physics_check.h"
 #include "virtual_go/bag/recording.h"
 #include "virtual_go/bag/stamp_statistics.h"
+#include "virtual_go/bag/stone_overlap.h"
 #include "virtual_go/bag/thresholds.h"
 
 namespace virtual_go {
@@ -17,8 +18,12 @@ namespace bag {
 
 struct Report {
   Recording recording;
-  std::vector<StampStatistics> stats;  // one per recording.topics entry
-  std::optional<PhysicsResult> physics;
+  std::vector<StampStatistics> stats;    // one per recording.topics entry
+  std::optional<PhysicsResult> physics;  // the stone of ~odom
+  // Every other stone of ~stones (all of them when the bag has no ~odom), in the order ~stones
+  // first names them; and the overlap of every pair at each ~stones message.
+  std::vector<StonePhysics> stones;
+  std::optional<StoneOverlapResult> overlap;
   std::vector<Check> checks;
   std::vector<std::string> problems;  // the recording's, plus what the analysis could not do
   bool partial() const { return !problems.empty(); }

@@ -22,6 +22,7 @@
 #include "virtual_go/bag/physics_check.h"
 #include "virtual_go/bag/recording.h"
 #include "virtual_go/bag/stamp_statistics.h"
+#include "virtual_go/bag/stone_overlap.h"
 
 namespace virtual_go {
 namespace bag {
@@ -37,6 +38,7 @@ enum ContactLimitIndex : int {
   kPenetration,     // every sample: depth below the board's top or the table
   kJellettDrift,    // flights, cap contact without rolling resistance or spinning friction
   kRestMoves,       // rest segments: samples that moved
+  kOverlap,         // two stones at one stamp (~stones): penetration depth of the lenses
   kContactLimitCount
 };
 
@@ -89,9 +91,13 @@ struct Check {
 };
 
 // One check per figure and periodic topic, and per physics figure the worst segment (largest
-// value / limit). stats[i] belongs to recording.topics[i]. physics may be null (no ~info/~odom).
+// value / limit) of every stone: the one of ~odom (physics) and the others of ~stones (stones).
+// stats[i] belongs to recording.topics[i]. physics may be null (no ~info/~odom); overlap null
+// without ~stones.
 std::vector<Check> run_checks(const Recording& recording, const std::vector<StampStatistics>& stats,
-                              const PhysicsResult* physics, const LimitOverrides& overrides);
+                              const PhysicsResult* physics, const LimitOverrides& overrides,
+                              const std::vector<StonePhysics>& stones = {},
+                              const StoneOverlapResult* overlap = nullptr);
 
 }  // namespace bag
 }  // namespace virtual_go
