@@ -7,6 +7,7 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <cstdio>
 #include <vector>
 
 #include "world/world_test_support.h"
@@ -174,6 +175,10 @@ DropRecord run_drop(Dropped& d, double t_end) {
 TEST(WorldContacts, AStoneDroppedOnARestingStoneWakesItAndNeverPassesThrough) {
   Dropped d;
   const DropRecord r = run_drop(d, 10.0);
+  const vg::WorldCounters& n = d.world.counters();
+  std::printf("drop on a resting stone, 10 s: %ld pipeline passes, %ld gap checks, %ld pair "
+              "searches, %ld islands, %ld events, work %ld\n",
+              n.stages, n.pair_gap_checks, n.pair_searches, n.islands_formed, n.events, n.work());
   // The first impact names both and wakes the lower stone.
   const vg::WorldEvent* first = nullptr;
   for (const vg::WorldEvent& e : r.events) {

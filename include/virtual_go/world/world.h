@@ -47,6 +47,7 @@
 #include "virtual_go/contact/plane_contact.h"
 #include "virtual_go/flight/integrator.h"
 #include "virtual_go/go/board_distance.h"
+#include "virtual_go/world/broad_phase.h"
 #include "virtual_go/world/flight_track.h"
 #include "virtual_go/world/nonsmooth_contact.h"
 #include "virtual_go/world/nonsmooth_island.h"
@@ -252,8 +253,10 @@ class World {
   // Stage 3: every awake stone to t_s by its own model (the per-stone advance with the work
   // limit); false when the budget stopped it first (time() is then the stop time).
   bool step_stones(double t_s, long work_limit, bool bounded);
-  // Stages 1 and 2: the earliest interaction up to t_s (or t_s).
-  Interaction next_interaction(double t_s);
+  // Stages 1 and 2: the earliest interaction up to t_s (or t_s). With a work limit, the pair
+  // searches share what is left of it (each at least one step, an exhausted search ends the pass
+  // where it got to).
+  Interaction next_interaction(double t_s, long work_limit);
   void resolve_interaction(const Interaction& next);
   void collide_pair(std::size_t a, std::size_t b, const PairTimeOfImpact& hit);
   // Stones a and b (and the islands they are in) become one island at t_s from `states` (or
@@ -263,9 +266,11 @@ class World {
   // Every island to t_s, each stopping where members leave it; t_s becomes the earliest such
   // time. (With several islands, one advanced before another stopped earlier stays ahead of
   // time() by less than a pass; its next advance waits for the world.)
-  void advance_islands(double& t_s);
-  // To t_s or the first lattice time where members leave (returned); they are left there.
-  double advance_island(IslandRun& run, double t_s);
+  // Each island gets at least one sub-step; one that stops at the work limit ends the pass there.
+  void advance_islands(double& t_s, long work_limit);
+  // To t_s, the first lattice time where members leave, or where the work limit stopped it
+  // (returned); members that leave are left there.
+  double advance_island(IslandRun& run, double t_s, long work_limit);
   // Each member but `except` goes on in its own single-stone fallback.
   void dissolve_island(std::size_t key, std::size_t except);
   IslandRun* island_of(std::size_t i);
@@ -274,6 +279,10 @@ class World {
   // (its island's) does not rise: kinetic energy at most the energy above the lowest potential
   // (the lens lying flat on the table, or on the top face when it cannot leave it in dt_s).
   double point_speed_bound(std::size_t i, double dt_s);
+  // The broad phase holds every resting stone (its rim sphere, entered when it comes to rest)
+  // and every awake stone (its bounds for the pass, entered by the pair search).
+  void enter_fallen_asleep();
+  void rebuild_broad_phase();
 
   WorldConfig config_;
   std::vector<WorldBodyModel> bodies_;  // [0]: the config's
@@ -284,6 +293,8 @@ class World {
   WorldCounters counters_;
   std::vector<std::unique_ptr<IslandRun>> islands_;
   std::size_t next_island_key_ = 0;
+  BroadPhase broad_phase_{1.0, 1.0};  // cells: the board's spacing (set by the constructor)
+  std::vector<double> flight_end_;    // per stone, scratch of the pair search (awake ones only)
 };
 
 }  // namespace virtual_go
