@@ -14,7 +14,8 @@
 // Stones touch (docs/physics.md, "World", "Stone-stone contact in the world"): advance_to is a
 // pipeline of named stages repeated until t: (1) board search: each flight's board contact is
 // known up to t; (2) pair search: every awake stone against every other stone within the reach
-// its energy allows (a scan, not the broad phase yet): a flight against a flight or a resting
+// its energy allows (world/broad_phase's grid: awake-awake and awake-resting pairs only, never
+// two resting stones; resting stones enter it when they come to rest): a flight against a flight or a resting
 // stone by the exact pair time of impact (closed form both), any pair with a stone in contact
 // (sliding, fallback, island) conservatively (the gap can close at most at the sum of the point
 // speeds their energies allow); (3) step: every awake stone to the earliest of the first pair
@@ -111,9 +112,13 @@ class World {
   // budget is shared among them, and those that went past the stop time of another are taken
   // back and advanced to it again, which costs at most what they had spent.) A budget is split
   // evenly among the stones in contact; each gets at least one step, so every call makes progress
-  // unless a stone is at an instant with several transitions. Not bounded yet: the sub-steps of
-  // a stone-stone island (it runs to the pass's end) and the pair searches of a pass beyond the
-  // first unit. Throws InvalidArgument for max_steps < 1 besides the checks above.
+  // unless a stone is at an instant with several transitions. Stone contact: a spent budget ends
+  // the call between pipeline passes, but the first pass of a call always steps (so a pass whose
+  // pair search alone costs more than the budget still makes progress); the pair searches of a
+  // pass share what is left (each at least one step, one indivisible full search when its share
+  // made no progress), and each island gets at least one sub-step and stops the pass where the
+  // budget stops it. So the bound grows by one pass's pair work (one unit per candidate pair)
+  // and one sub-step per island. Throws InvalidArgument for max_steps < 1 besides the checks above.
   AdvanceResult advance_to(double t_s, std::vector<WorldEvent>& events, const WorkBudget& budget);
 
   // A command: the stone's state becomes `state` at t_s (>= time(); the world is first advanced
