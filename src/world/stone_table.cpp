@@ -33,6 +33,7 @@ void StoneTable::erase(std::size_t i) {
   for (std::size_t& a : awake_) {
     if (a > i) --a;
   }
+  fallen_asleep_.clear();  // the World rebuilds its broad phase after a removal
 }
 
 void StoneTable::clear() {
@@ -42,6 +43,13 @@ void StoneTable::clear() {
   bodies_.clear();
   awake_.clear();
   awake_slot_.clear();
+  fallen_asleep_.clear();
+}
+
+std::vector<std::size_t> StoneTable::take_fallen_asleep() {
+  std::vector<std::size_t> taken;
+  taken.swap(fallen_asleep_);
+  return taken;
 }
 
 void StoneTable::set_mode(std::size_t i, StoneMode mode) {
@@ -62,6 +70,7 @@ void StoneTable::sync_awake(std::size_t i) {
   awake_slot_[last] = slot;
   awake_.pop_back();
   awake_slot_[i] = kAsleep;
+  fallen_asleep_.push_back(i);
 }
 
 }  // namespace virtual_go

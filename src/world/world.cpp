@@ -39,7 +39,8 @@ World::World(const WorldConfig& config, const RigidBodyState& initial_state, dou
 
 World::World(const WorldConfig& config, const std::vector<RigidBodyState>& initial_states,
              double t0_s)
-    : config_((validate_world_config(config), config)) {
+    : config_((validate_world_config(config), config)),
+      broad_phase_(config_.board.spacing_x_m, config_.board.spacing_y_m) {
   bodies_.emplace_back(WorldBody{config.motion.model, config.shape, std::nullopt},
                        config.motion.gravity_world, config.board);
   reset(initial_states, t0_s);
@@ -100,6 +101,7 @@ void World::start_stones(const std::vector<RigidBodyState>& states, double t0_s)
   pending_.clear();
   stones_.clear();
   islands_.clear();
+  rebuild_broad_phase();
   // Every stone starts awake (in flight); one placed at rest comes to rest at its first advance.
   for (std::size_t k = 0; k < states.size(); ++k) (void)stones_.add(0);
   for (std::size_t i = 0; i < states.size(); ++i) {
@@ -153,19 +155,24 @@ AdvanceResult World::advance_to(double t_s, std::vector<WorldEvent>& events,
   // stone to it, stage 4 resolves it; until t_s. A world of one stone, or whose awake stones are
   // far from all others, does one pass.
   int passes_at_instant = 0;
+  bool first_pass = true;
   do {
     ++counters_.stages;
     const double before = time_;
-    const Interaction next = next_interaction(t_s);  // stages 1 and 2
     long limit = std::numeric_limits<long>::max();
     if (bounded) {
+      // A spent budget ends the call between passes, never before the first one's step: every
+      // call makes progress, even when one pass's pair search alone costs more than the budget.
       const long left = budget.max_steps - (counters_.work() - work_start);
-      if (left < 1 && time_ < t_s) {
+      if (left < 1 && !first_pass) {
         reached = false;
         break;
       }
       limit = counters_.work() + std::max(1L, left);
     }
+    const Interaction next = next_interaction(t_s, limit);  // stages 1 and 2
+    if (bounded) limit = std::max(limit, counters_.work() + 1);
+    first_pass = false;
     if (!step_stones(next.time_s, limit, bounded)) {  // stage 3
       reached = false;
       break;
@@ -196,7 +203,7 @@ bool World::step_stones(double t_s, long work_limit, bool bounded) {
   // Islands go first: a member that leaves (to flight or plane contact) may meet another stone
   // at once, so the pass ends where it leaves and the next pass's pair search sees it.
   double target = t_s;
-  advance_islands(target);
+  advance_islands(target, work_limit);
   std::vector<std::size_t> costly;
   for (const std::size_t i : stones_.awake()) {
     ++counters_.stones_visited;

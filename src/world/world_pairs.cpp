@@ -58,9 +58,11 @@ double World::point_speed_bound(std::size_t i, double dt_s) {
   const auto speed = [&](std::size_t k, double kinetic_j) {
     const MassProperties& mass = body_at(k).setup().model.mass_properties();
     const double smallest_moment = mass.principal_moments_body().minCoeff();
-    // Every surface point lies within the rim radius a of the centre: |u| <= |v| + a |omega|.
-    return std::sqrt(2.0 * kinetic_j / mass.mass()) +
-           body_at(k).lens().half_width() * std::sqrt(2.0 * kinetic_j / smallest_moment);
+    const double a = body_at(k).lens().half_width();
+    // Every surface point lies within the rim radius a of the centre: |u| <= |v| + a |omega|,
+    // and with m v^2 + I_min omega^2 <= 2 K, Cauchy-Schwarz gives the largest such sum:
+    // |v| + a |omega| <= sqrt(2 K (1/m + a^2/I_min)) (the two maxima added: 1.32x that).
+    return std::sqrt(2.0 * kinetic_j * (1.0 / mass.mass() + a * a / smallest_moment));
   };
   const auto room = [&](std::size_t k) {
     const MotionSetup& setup = body_at(k).setup();
@@ -89,9 +91,33 @@ double World::point_speed_bound(std::size_t i, double dt_s) {
   return speed(i, kinetic_j);
 }
 
-World::Interaction World::next_interaction(double t_s) {
+void World::enter_fallen_asleep() {
+  // Every stone that came to rest since the last pass: its rim sphere, resting (a stone woken
+  // again since is entered as awake by the pair search).
+  for (const std::size_t i : stones_.take_fallen_asleep()) {
+    if (!config_.stone_contact || stones_.hot(i).mode != StoneMode::resting) continue;
+    broad_phase_.update(
+        i, sphere_bounds(stones_.hot(i).state.position_world, body_at(i).lens().half_width()),
+        false);
+  }
+}
+
+void World::rebuild_broad_phase() {
+  broad_phase_ = BroadPhase(config_.board.spacing_x_m, config_.board.spacing_y_m);
+  (void)stones_.take_fallen_asleep();
+  if (!config_.stone_contact) return;
+  for (std::size_t i = 0; i < stones_.size(); ++i) {
+    if (stones_.hot(i).mode != StoneMode::resting) continue;  // entered by the next pair search
+    broad_phase_.update(
+        i, sphere_bounds(stones_.hot(i).state.position_world, body_at(i).lens().half_width()),
+        false);
+  }
+}
+
+World::Interaction World::next_interaction(double t_s, long work_limit) {
   Interaction next;
   next.time_s = t_s;
+  enter_fallen_asleep();
   if (!config_.stone_contact || stones_.size() < 2 || stones_.all_resting()) return next;
   const auto consider = [&](double time_s, Interaction::Kind kind, std::size_t a, std::size_t b,
                             const PairTimeOfImpact* hit) {
@@ -107,16 +133,18 @@ World::Interaction World::next_interaction(double t_s) {
   std::vector<std::size_t> awake(stones_.awake().begin(), stones_.awake().end());
   std::sort(awake.begin(), awake.end());
   const double dt = t_s - time_;
+  const auto is_awake = [&](std::size_t k) { return stones_.hot(k).mode != StoneMode::resting; };
 
   // Stage 1, board search: each flight's board contact up to t_s (as advance_flight does); the
   // flight is closed form up to there. The pass stops at it: the flight after the bounce is
-  // searched against the other stones in the next pass.
-  std::vector<double> flight_end(stones_.size(), t_s);
-  std::vector<Bounds> bounds(stones_.size());
+  // searched against the other stones in the next pass. Each awake stone's bounds for the pass
+  // go into the broad phase (resting stones are in it already).
+  flight_end_.resize(stones_.size());
   for (const std::size_t i : awake) {
     StoneHot& h = stones_.hot(i);
     StoneRecord& r = stones_.record(i);
     const double rim_m = body_at(i).lens().half_width();
+    flight_end_[i] = t_s;
     if (h.mode == StoneMode::flight) {
       if (config_.board_enabled) {
         while (!r.flight.contact() && r.flight.clear_until_s() < t_s) {
@@ -125,84 +153,97 @@ World::Interaction World::next_interaction(double t_s) {
               search(i, from, std::max(t_s, from + config_.options.contact_search_horizon_s));
           if (!found.hit && !(found.time_s > from)) break;  // advance_flight hands it over
         }
-        if (r.flight.contact()) flight_end[i] = std::min(t_s, r.flight.contact()->time_s);
-        if (r.flight.clear_until_s() < flight_end[i] && !r.flight.contact())
-          flight_end[i] = std::max(time_, r.flight.clear_until_s());
+        if (r.flight.contact()) flight_end_[i] = std::min(t_s, r.flight.contact()->time_s);
+        if (r.flight.clear_until_s() < flight_end_[i] && !r.flight.contact())
+          flight_end_[i] = std::max(time_, r.flight.clear_until_s());
       }
-      consider(flight_end[i], Interaction::Kind::none, 0, 0, nullptr);
-      bounds[i] = swept_bounds(h.state.position_world, h.state.velocity_world,
-                               body_at(i).setup().gravity_world,
-                               std::max(0.0, flight_end[i] - time_), rim_m);
+      consider(flight_end_[i], Interaction::Kind::none, 0, 0, nullptr);
+      broad_phase_.update(i,
+                          swept_bounds(h.state.position_world, h.state.velocity_world,
+                                       body_at(i).setup().gravity_world,
+                                       std::max(0.0, flight_end_[i] - time_), rim_m),
+                          true);
     } else {
-      bounds[i] = sphere_bounds(h.state.position_world, rim_m + point_speed_bound(i, dt) * dt);
+      broad_phase_.update(
+          i, sphere_bounds(h.state.position_world, rim_m + point_speed_bound(i, dt) * dt), true);
     }
   }
 
-  // Stage 2, pair search: every awake stone against every other stone whose bounds meet its
-  // own (a scan; each pair once). Closed-form motions both: the exact time of impact. A stone
-  // in contact: the gap closes at most at the sum of the point speed bounds.
-  std::vector<char> is_awake(stones_.size(), 0);
-  for (const std::size_t i : awake) is_awake[i] = 1;
-  for (const std::size_t i : awake) {
-    for (std::size_t j = 0; j < stones_.size(); ++j) {
-      if (j == i || (is_awake[j] && j < i)) continue;
-      const StoneRecord& ri = stones_.record(i);
-      const StoneRecord& rj = stones_.record(j);
-      if (ri.island && rj.island && *ri.island == *rj.island) continue;
-      const StoneHot& hi = stones_.hot(i);
-      const StoneHot& hj = stones_.hot(j);
-      const Bounds bj =
-          is_awake[j] ? bounds[j]
-                      : sphere_bounds(hj.state.position_world, body_at(j).lens().half_width());
-      if (!bounds[i].overlaps(bj)) continue;
-      const bool closed_i = hi.mode == StoneMode::flight;
-      const bool closed_j = hj.mode == StoneMode::flight || hj.mode == StoneMode::resting;
-      if (closed_i && closed_j) {
-        const double end = std::min(flight_end[i], flight_end[j]);
-        const PairTimeOfImpact hit =
-            pair_time_of_impact(stone_motion(i), stone_motion(j), time_, end);
-        ++counters_.pair_searches;
+  // Stage 2, pair search: the broad phase's candidates (awake-awake and awake-resting pairs
+  // whose bounds meet; never two resting stones), in index order. Closed-form motions both: the
+  // exact time of impact. A stone in contact: the gap closes at most at the sum of the point
+  // speed bounds.
+  const long tests_before = broad_phase_.counters().bound_tests;
+  const std::vector<std::pair<std::size_t, std::size_t>> pairs = broad_phase_.candidate_pairs();
+  counters_.broad_phase_tests += broad_phase_.counters().bound_tests - tests_before;
+  counters_.pair_candidates += static_cast<long>(pairs.size());
+  const PairTimeOfImpactOptions full_search;
+  for (std::size_t p = 0; p < pairs.size(); ++p) {
+    const auto& pair = pairs[p];
+    // i is awake; j is the other (awake with a larger index, or resting).
+    const std::size_t i = is_awake(pair.first) ? pair.first : pair.second;
+    const std::size_t j = i == pair.first ? pair.second : pair.first;
+    const StoneRecord& ri = stones_.record(i);
+    const StoneRecord& rj = stones_.record(j);
+    if (ri.island && rj.island && *ri.island == *rj.island) continue;
+    const StoneHot& hi = stones_.hot(i);
+    const StoneHot& hj = stones_.hot(j);
+    const bool closed_i = hi.mode == StoneMode::flight;
+    const bool closed_j = hj.mode == StoneMode::flight || hj.mode == StoneMode::resting;
+    if (closed_i && closed_j) {
+      const double end = std::min(flight_end_[i], is_awake(j) ? flight_end_[j] : t_s);
+      // The search's share of the work left (at least one step; a search exhausted by its
+      // share is contact-free up to where it got, which ends the pass there).
+      PairTimeOfImpactOptions options = full_search;
+      const long share = (work_limit - counters_.work()) / static_cast<long>(pairs.size() - p);
+      options.max_steps = static_cast<int>(std::clamp(share, 1L, long{full_search.max_steps}));
+      PairTimeOfImpact hit =
+          pair_time_of_impact(stone_motion(i), stone_motion(j), time_, end, options);
+      if (hit.exhausted && !(hit.time_s > time_) && options.max_steps < full_search.max_steps) {
+        // No progress within the share: the full search, one indivisible unit (world.h).
         counters_.pair_search_steps += hit.advancement_steps + hit.polish_steps;
-        // A hit at the instant a member meets the board is left to the next pass (the board
-        // contact comes first there).
-        const auto board_by = [&](std::size_t k) {
-          return stones_.hot(k).mode == StoneMode::flight && stones_.record(k).flight.contact() &&
-                 stones_.record(k).flight.contact()->time_s <= end;
-        };
-        if (hit.hit && !(hit.approach_speed_mps > kPairTouchingSpeedMps) &&
-            hit.approach_speed_mps > -kPairTouchingSpeedMps) {
-          // Touching without approaching (a stone sliding down past a neighbour it touches):
-          // not an interaction in this pass.
-          continue;
-        }
-        if (hit.hit && (hit.time_s < end || !(board_by(i) || board_by(j)))) {
-          consider(hit.time_s, Interaction::Kind::impact, i, j, &hit);
-        } else if (hit.exhausted && !(hit.time_s > time_)) {
-          consider(time_, Interaction::Kind::join, i, j, nullptr);  // no progress: the island
-        } else if (hit.exhausted) {
-          consider(hit.time_s, Interaction::Kind::none, 0, 0, nullptr);
-        }
+        hit = pair_time_of_impact(stone_motion(i), stone_motion(j), time_, end, full_search);
+      }
+      ++counters_.pair_searches;
+      counters_.pair_search_steps += hit.advancement_steps + hit.polish_steps;
+      // A hit at the instant a member meets the board is left to the next pass (the board
+      // contact comes first there).
+      const auto board_by = [&](std::size_t k) {
+        return stones_.hot(k).mode == StoneMode::flight && stones_.record(k).flight.contact() &&
+               stones_.record(k).flight.contact()->time_s <= end;
+      };
+      if (hit.hit && !(hit.approach_speed_mps > kPairTouchingSpeedMps) &&
+          hit.approach_speed_mps > -kPairTouchingSpeedMps) {
+        // Touching without approaching (a stone sliding down past a neighbour it touches):
+        // not an interaction in this pass.
         continue;
       }
-      const LensPairContact c = lens_pair_distance(body_at(i).lens(), lens_pose(hi.state),
-                                                   body_at(j).lens(), lens_pose(hj.state));
-      ++counters_.pair_gap_checks;
-      if (c.gap_m <= kJoinGapM) {
-        // Touching: an island when they approach at the witness points; a pair touching
-        // without approaching (sliding past, resting side by side) is let be for the pass.
-        const Eigen::Vector3d u_i =
-            point_velocity_world(body_at(i).setup().model, hi.state, c.point_a_world);
-        const Eigen::Vector3d u_j =
-            point_velocity_world(body_at(j).setup().model, hj.state, c.point_b_world);
-        if (c.normal_world.dot(u_j - u_i) < -kPairTouchingSpeedMps || c.gap_m < -kJoinGapM)
-          consider(time_, Interaction::Kind::join, i, j, nullptr);
-        continue;
+      if (hit.hit && (hit.time_s < end || !(board_by(i) || board_by(j)))) {
+        consider(hit.time_s, Interaction::Kind::impact, i, j, &hit);
+      } else if (hit.exhausted && !(hit.time_s > time_)) {
+        consider(time_, Interaction::Kind::join, i, j, nullptr);  // no progress: the island
+      } else if (hit.exhausted) {
+        consider(hit.time_s, Interaction::Kind::none, 0, 0, nullptr);
       }
-      const double rate = point_speed_bound(i, dt) + (is_awake[j] ? point_speed_bound(j, dt) : 0.0);
-      if (rate > 0.0) {
-        consider(time_ + (c.gap_m - 0.5 * kJoinGapM) / rate, Interaction::Kind::none, 0, 0,
-                 nullptr);
-      }
+      continue;
+    }
+    const LensPairContact c = lens_pair_distance(body_at(i).lens(), lens_pose(hi.state),
+                                                 body_at(j).lens(), lens_pose(hj.state));
+    ++counters_.pair_gap_checks;
+    if (c.gap_m <= kJoinGapM) {
+      // Touching: an island when they approach at the witness points; a pair touching
+      // without approaching (sliding past, resting side by side) is let be for the pass.
+      const Eigen::Vector3d u_i =
+          point_velocity_world(body_at(i).setup().model, hi.state, c.point_a_world);
+      const Eigen::Vector3d u_j =
+          point_velocity_world(body_at(j).setup().model, hj.state, c.point_b_world);
+      if (c.normal_world.dot(u_j - u_i) < -kPairTouchingSpeedMps || c.gap_m < -kJoinGapM)
+        consider(time_, Interaction::Kind::join, i, j, nullptr);
+      continue;
+    }
+    const double rate = point_speed_bound(i, dt) + (is_awake(j) ? point_speed_bound(j, dt) : 0.0);
+    if (rate > 0.0) {
+      consider(time_ + (c.gap_m - 0.5 * kJoinGapM) / rate, Interaction::Kind::none, 0, 0, nullptr);
     }
   }
   return next;
@@ -340,7 +381,7 @@ void World::form_island(const std::vector<std::size_t>& seeds,
   islands_.push_back(std::move(run));
 }
 
-void World::advance_islands(double& t_s) {
+void World::advance_islands(double& t_s, long work_limit) {
   // By key order (the order they were formed): deterministic.
   for (std::size_t k = 0; k < islands_.size(); ++k) {
     IslandRun& run = *islands_[k];
@@ -348,7 +389,7 @@ void World::advance_islands(double& t_s) {
     if (first == run.in.end()) continue;
     const std::size_t any = index_of(run.members[static_cast<std::size_t>(first - run.in.begin())]);
     if (!(stones_.hot(any).state_time_s < t_s)) continue;  // ahead already (see world.h)
-    t_s = std::min(t_s, advance_island(run, t_s));
+    t_s = std::min(t_s, advance_island(run, t_s, work_limit));
   }
   islands_.erase(std::remove_if(islands_.begin(), islands_.end(),
                                 [](const std::unique_ptr<IslandRun>& r) {
@@ -357,9 +398,9 @@ void World::advance_islands(double& t_s) {
                  islands_.end());
 }
 
-double World::advance_island(IslandRun& run, double t_s) {
+double World::advance_island(IslandRun& run, double t_s, long work_limit) {
   for (;;) {
-    const IslandOutcome o = run.island.advance(t_s);
+    const IslandOutcome o = run.island.advance(t_s, std::max(1L, work_limit - counters_.work()));
     const NonsmoothCounters& c = run.island.counters();
     counters_.nonsmooth_steps += c.steps - run.seen.steps;
     counters_.nonsmooth_impulses += c.impulses - run.seen.impulses;
@@ -391,7 +432,8 @@ double World::advance_island(IslandRun& run, double t_s) {
           break;
       }
     }
-    if (!o.left.empty() || o.finished || !(o.time_s < t_s)) return o.time_s;
+    if (!o.left.empty() || o.finished || !(o.time_s < t_s) || counters_.work() >= work_limit)
+      return o.time_s;
   }
 }
 

@@ -98,6 +98,7 @@ void World::remove_stone(StoneId id, double t_s, std::vector<WorldEvent>& events
   if (stones_.record(i).island) dissolve_island(*stones_.record(i).island, i);
   flush(events);  // before the indices after it shift
   stones_.erase(i);
+  rebuild_broad_phase();  // its entries are by index (a command: O(stones) as the erase)
 }
 
 void World::clear(double t_s) {
@@ -105,6 +106,7 @@ void World::clear(double t_s) {
   stones_.clear();
   islands_.clear();
   pending_.clear();
+  rebuild_broad_phase();
   time_ = t_s;
 }
 
@@ -149,6 +151,8 @@ void World::move_resting_stone(StoneId id, const Eigen::Vector2d& position_xy_wo
   if (t_s > time_) advance_to(t_s, events);
   stones_.hot(i).state = moved;
   stones_.hot(i).state_time_s = t_s;
+  if (broad_phase_.contains(i))
+    broad_phase_.update(i, sphere_bounds(moved.position_world, body.lens().half_width()), false);
 }
 
 std::optional<StoneColor> World::color(StoneId id) const {

@@ -347,6 +347,12 @@ void expect_same_work(const vg::WorldCounters& a, const vg::WorldCounters& b) {
   EXPECT_EQ(a.nonsmooth_impulses, b.nonsmooth_impulses);
   EXPECT_EQ(a.events, b.events);
   EXPECT_EQ(a.stones_visited, b.stones_visited);
+  EXPECT_EQ(a.pair_searches, b.pair_searches);
+  EXPECT_EQ(a.pair_search_steps, b.pair_search_steps);
+  EXPECT_EQ(a.pair_gap_checks, b.pair_gap_checks);
+  EXPECT_EQ(a.broad_phase_tests, b.broad_phase_tests);
+  EXPECT_EQ(a.pair_candidates, b.pair_candidates);
+  EXPECT_EQ(a.islands_formed, b.islands_formed);
 }
 
 // Issue 15: a resting full board costs what an empty one does. 361 stones set down flat on every
@@ -414,6 +420,70 @@ TEST(WorldRest, AFullRestingBoardIsNeverVisited) {
   world.advance_to(1e-3, events);
   EXPECT_EQ(world.counters().stones_visited, static_cast<long>(stones.size()));
   EXPECT_TRUE(world.all_resting());
+}
+
+// The same with stone-stone contact on: a resting board is not even handed to the broad phase
+// (10^6 calls, every work counter unchanged, pair work included). Then one stone is lifted and
+// falls: its passes look only at its neighbours in the board's grid, so they cost exactly what
+// they cost with only its eight neighbours on the board (the same broad-phase tests, candidate
+// pairs and pair searches, the same state bit for bit).
+TEST(WorldRest, AFullRestingBoardWithStoneContactDoesNoPairWork) {
+  vg::WorldConfig c = config(0.5);
+  c.stone_contact = true;
+  const std::size_t tengen = vg::point_index(vg::parse_gtp_point("K10"));
+  const Vector3d centre = vg::go_point_world(c.board, vg::point_at_index(static_cast<int>(tengen)));
+  std::vector<vg::RigidBodyState> board, block;
+  std::size_t tengen_in_block = 0;
+  for (int index = 0; index < vg::kGoLines * vg::kGoLines; ++index) {
+    const Vector3d p = vg::go_point_world(c.board, vg::point_at_index(index));
+    board.push_back(at(Vector3d(p.x(), p.y(), p.z() + kC)));
+    // Tengen and its eight neighbours (within one spacing along each axis).
+    if (std::abs(p.x() - centre.x()) < 0.03 && std::abs(p.y() - centre.y()) < 0.03) {
+      if (static_cast<std::size_t>(index) == tengen) tengen_in_block = block.size();
+      block.push_back(board.back());
+    }
+  }
+  ASSERT_EQ(block.size(), 9u);
+  vg::World full(c, board, 0.0), few(c, block, 0.0);
+  std::vector<vg::WorldEvent> events;
+  full.advance_to(1e-3, events);
+  few.advance_to(1e-3, events);
+  ASSERT_TRUE(full.all_resting());
+  ASSERT_TRUE(few.all_resting());
+  const vg::WorldCounters before = full.counters();
+  for (long k = 1; k <= 1000000; ++k) full.advance_to(1e-3 + k * 1e-3, events);
+  expect_same_work(full.counters(), before);  // pair work and broad-phase tests included
+
+  // Lift tengen by 1 cm in both; 30 ms of its fall (it lands after 45 ms).
+  const auto lift = [&](vg::World& w, std::size_t i) {
+    vg::RigidBodyState s = w.state(i);
+    s.position_world.z() += 0.01;
+    w.set_state(i, s, w.time(), events);
+  };
+  few.advance_to(full.time(), events);
+  lift(full, tengen);
+  lift(few, tengen_in_block);
+  const vg::WorldCounters full0 = full.counters(), few0 = few.counters();
+  for (int k = 1; k <= 30; ++k) {
+    full.advance_to(full.time() + 1e-3, events);
+    few.advance_to(full.time(), events);
+  }
+  EXPECT_TRUE(full.state(tengen) == few.state(tengen_in_block));
+  const auto delta = [](const vg::WorldCounters& a, const vg::WorldCounters& b) {
+    return std::vector<long>{
+        a.broad_phase_tests - b.broad_phase_tests, a.pair_candidates - b.pair_candidates,
+        a.pair_searches - b.pair_searches, a.pair_search_steps - b.pair_search_steps,
+        a.stones_visited - b.stones_visited};
+  };
+  EXPECT_EQ(delta(full.counters(), full0), delta(few.counters(), few0));
+  EXPECT_EQ(full.counters().stones_visited - full0.stones_visited, 30);   // tengen alone
+  EXPECT_GT(full.counters().pair_candidates - full0.pair_candidates, 0);  // it has neighbours
+  std::printf(
+      "one stone falling among 360 resting, 30 calls: %ld bound tests, %ld candidate "
+      "pairs, %ld pair searches\n",
+      full.counters().broad_phase_tests - full0.broad_phase_tests,
+      full.counters().pair_candidates - full0.pair_candidates,
+      full.counters().pair_searches - full0.pair_searches);
 }
 
 TEST(WorldRest, ACommandWakesARestingStone) {

@@ -7,6 +7,7 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <cstdio>
 #include <vector>
 
 #include "world/world_test_support.h"
@@ -174,6 +175,11 @@ DropRecord run_drop(Dropped& d, double t_end) {
 TEST(WorldContacts, AStoneDroppedOnARestingStoneWakesItAndNeverPassesThrough) {
   Dropped d;
   const DropRecord r = run_drop(d, 10.0);
+  const vg::WorldCounters& n = d.world.counters();
+  std::printf(
+      "drop on a resting stone, 10 s: %ld pipeline passes, %ld gap checks, %ld pair "
+      "searches, %ld islands, %ld events, work %ld\n",
+      n.stages, n.pair_gap_checks, n.pair_searches, n.islands_formed, n.events, n.work());
   // The first impact names both and wakes the lower stone.
   const vg::WorldEvent* first = nullptr;
   for (const vg::WorldEvent& e : r.events) {
@@ -210,6 +216,38 @@ TEST(WorldContacts, AStoneDroppedOnARestingStoneWakesItAndNeverPassesThrough) {
   }
   // The upper stone ended on the lower one or on the board, above the board in both cases.
   EXPECT_GT(d.world.state(d.upper).position_world.z(), kC - 1e-9);
+}
+
+// The work budget covers the pair search and the islands: the drop above (its costly part,
+// two stones in plane contact side by side, is in its first 0.5 s) with 100 units per call. Every
+// call makes progress and stays within the bound (world.h: 2 max_steps, plus one pass's pair work
+// and one unit per stone or island in contact; a handful here), and the states are the same as
+// without a budget at the times both reach (the budget only cuts the work into calls).
+TEST(WorldContacts, AWorkBudgetBoundsThePairSearchAndTheIslands) {
+  Dropped budgeted, free_run;
+  const vg::WorkBudget budget{100};
+  std::vector<vg::WorldEvent> events;
+  long calls = 0, largest = 0;
+  for (int k = 1; k <= 500; ++k) {
+    const double t = k * 1e-3;
+    for (;;) {
+      const double before = budgeted.world.time();
+      const vg::AdvanceResult r = budgeted.world.advance_to(t, events, budget);
+      ++calls;
+      largest = std::max(largest, r.work);
+      ASSERT_LE(r.work, 2 * budget.max_steps + 16) << "at " << before << " s";
+      if (r.reached) break;
+      ASSERT_GT(budgeted.world.time(), before) << "no progress at " << before << " s";
+    }
+    free_run.world.advance_to(t, events);
+    if (k % 100 == 0) {
+      for (std::size_t i = 0; i < 2; ++i)
+        EXPECT_TRUE(budgeted.world.state(i) == free_run.world.state(i))
+            << "stone " << i << " at " << t;
+    }
+  }
+  std::printf("budget 100: %ld calls for 500 grid times, largest call %ld units\n", calls, largest);
+  EXPECT_GT(calls, 500);  // the budget did cut some calls
 }
 
 TEST(WorldContacts, TheSameDropTwiceIsBitwiseTheSame) {

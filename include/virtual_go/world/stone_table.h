@@ -80,6 +80,9 @@ class StoneTable {
   void set_mode(std::size_t i, StoneMode mode);
   // Brings the awake set in step with a mode restored wholesale (a snapshot).
   void sync_awake(std::size_t i);
+  // The stones that came to rest since the last call (each once, perhaps awake again since):
+  // the World enters them into its broad phase as resting. Cleared by clear() and erase().
+  std::vector<std::size_t> take_fallen_asleep();
 
  private:
   static constexpr std::size_t kAsleep = std::numeric_limits<std::size_t>::max();
@@ -89,6 +92,7 @@ class StoneTable {
   std::vector<std::size_t> bodies_;
   std::vector<std::size_t> awake_;
   std::vector<std::size_t> awake_slot_;  // kAsleep while the stone rests
+  std::vector<std::size_t> fallen_asleep_;
   StoneId next_id_;
 };
 

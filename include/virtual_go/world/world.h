@@ -14,7 +14,8 @@
 // Stones touch (docs/physics.md, "World", "Stone-stone contact in the world"): advance_to is a
 // pipeline of named stages repeated until t: (1) board search: each flight's board contact is
 // known up to t; (2) pair search: every awake stone against every other stone within the reach
-// its energy allows (a scan, not the broad phase yet): a flight against a flight or a resting
+// its energy allows (world/broad_phase's grid: awake-awake and awake-resting pairs only, never
+// two resting stones; resting stones enter it when they come to rest): a flight against a flight or a resting
 // stone by the exact pair time of impact (closed form both), any pair with a stone in contact
 // (sliding, fallback, island) conservatively (the gap can close at most at the sum of the point
 // speeds their energies allow); (3) step: every awake stone to the earliest of the first pair
@@ -47,6 +48,7 @@
 #include "virtual_go/contact/plane_contact.h"
 #include "virtual_go/flight/integrator.h"
 #include "virtual_go/go/board_distance.h"
+#include "virtual_go/world/broad_phase.h"
 #include "virtual_go/world/flight_track.h"
 #include "virtual_go/world/nonsmooth_contact.h"
 #include "virtual_go/world/nonsmooth_island.h"
@@ -110,9 +112,13 @@ class World {
   // budget is shared among them, and those that went past the stop time of another are taken
   // back and advanced to it again, which costs at most what they had spent.) A budget is split
   // evenly among the stones in contact; each gets at least one step, so every call makes progress
-  // unless a stone is at an instant with several transitions. Not bounded yet: the sub-steps of
-  // a stone-stone island (it runs to the pass's end) and the pair searches of a pass beyond the
-  // first unit. Throws InvalidArgument for max_steps < 1 besides the checks above.
+  // unless a stone is at an instant with several transitions. Stone contact: a spent budget ends
+  // the call between pipeline passes, but the first pass of a call always steps (so a pass whose
+  // pair search alone costs more than the budget still makes progress); the pair searches of a
+  // pass share what is left (each at least one step, one indivisible full search when its share
+  // made no progress), and each island gets at least one sub-step and stops the pass where the
+  // budget stops it. So the bound grows by one pass's pair work (one unit per candidate pair)
+  // and one sub-step per island. Throws InvalidArgument for max_steps < 1 besides the checks above.
   AdvanceResult advance_to(double t_s, std::vector<WorldEvent>& events, const WorkBudget& budget);
 
   // A command: the stone's state becomes `state` at t_s (>= time(); the world is first advanced
@@ -252,8 +258,10 @@ class World {
   // Stage 3: every awake stone to t_s by its own model (the per-stone advance with the work
   // limit); false when the budget stopped it first (time() is then the stop time).
   bool step_stones(double t_s, long work_limit, bool bounded);
-  // Stages 1 and 2: the earliest interaction up to t_s (or t_s).
-  Interaction next_interaction(double t_s);
+  // Stages 1 and 2: the earliest interaction up to t_s (or t_s). With a work limit, the pair
+  // searches share what is left of it (each at least one step, an exhausted search ends the pass
+  // where it got to).
+  Interaction next_interaction(double t_s, long work_limit);
   void resolve_interaction(const Interaction& next);
   void collide_pair(std::size_t a, std::size_t b, const PairTimeOfImpact& hit);
   // Stones a and b (and the islands they are in) become one island at t_s from `states` (or
@@ -263,9 +271,11 @@ class World {
   // Every island to t_s, each stopping where members leave it; t_s becomes the earliest such
   // time. (With several islands, one advanced before another stopped earlier stays ahead of
   // time() by less than a pass; its next advance waits for the world.)
-  void advance_islands(double& t_s);
-  // To t_s or the first lattice time where members leave (returned); they are left there.
-  double advance_island(IslandRun& run, double t_s);
+  // Each island gets at least one sub-step; one that stops at the work limit ends the pass there.
+  void advance_islands(double& t_s, long work_limit);
+  // To t_s, the first lattice time where members leave, or where the work limit stopped it
+  // (returned); members that leave are left there.
+  double advance_island(IslandRun& run, double t_s, long work_limit);
   // Each member but `except` goes on in its own single-stone fallback.
   void dissolve_island(std::size_t key, std::size_t except);
   IslandRun* island_of(std::size_t i);
@@ -274,6 +284,10 @@ class World {
   // (its island's) does not rise: kinetic energy at most the energy above the lowest potential
   // (the lens lying flat on the table, or on the top face when it cannot leave it in dt_s).
   double point_speed_bound(std::size_t i, double dt_s);
+  // The broad phase holds every resting stone (its rim sphere, entered when it comes to rest)
+  // and every awake stone (its bounds for the pass, entered by the pair search).
+  void enter_fallen_asleep();
+  void rebuild_broad_phase();
 
   WorldConfig config_;
   std::vector<WorldBodyModel> bodies_;  // [0]: the config's
@@ -284,6 +298,8 @@ class World {
   WorldCounters counters_;
   std::vector<std::unique_ptr<IslandRun>> islands_;
   std::size_t next_island_key_ = 0;
+  BroadPhase broad_phase_{1.0, 1.0};  // cells: the board's spacing (set by the constructor)
+  std::vector<double> flight_end_;    // per stone, scratch of the pair search (awake ones only)
 };
 
 }  // namespace virtual_go

@@ -47,9 +47,10 @@ struct WorldConfig {
   // Stones touch each other (pair times of impact, pair impacts, islands: docs/physics.md,
   // "Stone-stone contact in the world"). Off by default until its cost is bounded: two stones in
   // plane contact side by side make the conservative pair search take very many tiny passes
-  // (205,480 in the first 3 s of a drop onto a resting stone), and neither the island's sub-steps
-  // nor the extra pair searches count against a WorkBudget yet. Off, stones pass through each
-  // other as before (the node and placement rely on this).
+  // (172,577 in 10 s of a drop onto a resting stone), and a stone dropped into its slot between
+  // exactly touching neighbours (test_world's full board) does not finish. The WorkBudget covers
+  // pair searches and islands. Off, stones pass through each other as before (the node and
+  // placement rely on this).
   bool stone_contact = false;
   double zeno_height_m = 1e-6;  // rebounds lower than this end the bouncing (docs/physics.md,
                                 // "Impact")

@@ -20,6 +20,8 @@ struct WorldCounters {
   long pair_searches = 0;         // stone-stone times of impact (pair_time_of_impact)
   long pair_search_steps = 0;     // their advancement and polishing steps
   long pair_gap_checks = 0;       // conservative stone-stone distances (a stone in contact)
+  long broad_phase_tests = 0;     // pairs of bounds the broad phase compared (world/broad_phase.h)
+  long pair_candidates = 0;       // pairs whose bounds met (each then gets a pair test)
   long pair_impacts = 0;          // stone-stone impacts resolved (of `impacts`)
   long islands_formed = 0;        // stone-stone islands formed (NonsmoothIsland)
   long stages = 0;                // pipeline passes of advance_to (world.h)
