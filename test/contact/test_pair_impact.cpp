@@ -243,6 +243,11 @@ TEST(PairImpact, RandomImpactsConserveMomentumAndNeverGainEnergy) {
     worst_angular = std::max(worst_angular, (l_after - l_before).norm() / l_scale);
     EXPECT_LE(imp.energy_change_j, 0.0);
     EXPECT_GE(imp.normal_velocity_after_mps, -1e-12);  // they do not keep approaching
+    // An impact changes velocities only: the poses (touching, gap 0) are bitwise those before.
+    EXPECT_TRUE(imp.state_a.position_world == a.position_world &&
+                imp.state_a.orientation.coeffs() == a.orientation.coeffs() &&
+                imp.state_b.position_world == b.position_world &&
+                imp.state_b.orientation.coeffs() == b.orientation.coeffs());
     total_steps += imp.slip_steps;
     stuck += imp.stuck;
   }
