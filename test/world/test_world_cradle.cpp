@@ -310,25 +310,29 @@ TEST(WorldCradle, DISABLED_OnTheBoardAnElasticFrictionlessRowIsTheAnalyticCradle
   }
 }
 
-// With friction on the board (the default material) and between the stones, a row struck by a
-// flying stone comes to rest in finite time, the energy never rising, nothing dipping into the
-// board.
-TEST(WorldCradle, OnARealBoardTheRowComesToRest) {
+// With friction on the board (the default material) and between the stones, a row of 3 struck
+// by a stone flying just above it comes to rest in finite time, the energy never rising, nothing
+// dipping into the board.
+struct RealBoardRun {
+  double worst_rise = 0.0, worst_gap = 1.0, worst_board = 1.0, rest_at = -1.0;
+};
+
+RealBoardRun run_real_board() {
   Cradle cr(3, Striker::flying_over_the_board, 0.8, 0.3, 0.3);
+  RealBoardRun r;
   double previous = cr.total_energy();
   const double scale = std::abs(previous) + 4 * mass() * kG * kA;
-  double worst_rise = 0.0, worst_gap = 1.0, worst_board = 1.0, rest_at = -1.0;
   const double dt = 1e-3;
   for (int k = 1; k * dt <= 5.0 + 1e-12; ++k) {
     cr.world.advance_to(k * dt, cr.events);
     const double en = cr.total_energy();
-    worst_rise = std::max(worst_rise, (en - previous) / scale);
+    r.worst_rise = std::max(r.worst_rise, (en - previous) / scale);
     previous = std::min(previous, en);
-    worst_gap = std::min(worst_gap, smallest_pair_gap(cr.world));
+    r.worst_gap = std::min(r.worst_gap, smallest_pair_gap(cr.world));
     for (std::size_t i = 0; i < cr.world.stone_count(); ++i)
-      worst_board = std::min(worst_board, plane_gap(cr.world.state(i), 0.0));
+      r.worst_board = std::min(r.worst_board, plane_gap(cr.world.state(i), 0.0));
     if (cr.world.all_resting()) {
-      rest_at = k * dt;
+      r.rest_at = k * dt;
       break;
     }
   }
@@ -337,13 +341,26 @@ TEST(WorldCradle, OnARealBoardTheRowComesToRest) {
       "[ measured ] cradle on the board (3 + striker, e* 0.8, mu 0.3): all rest at %.3f s; "
       "largest energy rise %.3g of E; smallest gaps %.3g m (pairs), %.3g m (board); "
       "%ld pair impacts, %ld islands, %ld island sub-steps, %ld passes, %ld gap checks\n",
-      rest_at, worst_rise, worst_gap, worst_board, c.pair_impacts, c.islands_formed,
+      r.rest_at, r.worst_rise, r.worst_gap, r.worst_board, c.pair_impacts, c.islands_formed,
       c.nonsmooth_steps, c.stages, c.pair_gap_checks);
-  EXPECT_GT(rest_at, 0.0);
-  EXPECT_LE(worst_rise, 1e-11);
-  EXPECT_GE(worst_board, -1e-9);
-  // Pairs: see DISABLED_OnARealBoardNoTwoStonesOverlap.
-  EXPECT_GE(worst_gap, -1e-7);
+  return r;
+}
+
+TEST(WorldCradle, OnARealBoardTheRowComesToRest) {
+  const RealBoardRun r = run_real_board();
+  EXPECT_GT(r.rest_at, 0.0);
+  EXPECT_LE(r.worst_rise, 1e-11);
+  EXPECT_GE(r.worst_board, -1e-9);
+  // Measured 1.17e-8 m: DISABLED_OnARealBoardNoTwoStonesOverlap holds it to 1e-9 m.
+  EXPECT_GE(r.worst_gap, -1e-7);
+}
+
+// DISABLED: a World defect (src/world). The run above: an overlap of 1.17e-8 m between two
+// stones of the row in a handed-out state (the goal: 1e-9 m). It rests at 0.140 s after 372
+// islands, 790,210 passes and 1,743,079 pair gap checks (22 s of CPU in this -O2 test build):
+// the cost docs/physics.md, "World", describes.
+TEST(WorldCradle, DISABLED_OnARealBoardNoTwoStonesOverlap) {
+  EXPECT_GE(run_real_board().worst_gap, -1e-9);
 }
 
 }  // namespace
