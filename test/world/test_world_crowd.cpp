@@ -157,7 +157,7 @@ TEST(WorldCrowd, AStoneThrownIntoABlockNeverGainsEnergyNorOverlaps) {
 // DISABLED: the World's cost (src/world). Everything should rest in finite time; measured: the
 // run stalls after 87 ms: 45,000 passes (pipeline stages) and 130,000 pair gap checks in the
 // first 84 ms, then 10 to 20 s of wall time per simulated millisecond, growing (0.090 s reached
-// after 45 s, 199,274 passes, 36 islands; -O2 test build on a loaded machine); 14 minutes did
+// after 45 s, 199,274 passes, 36 islands; -O2 test build on a loaded machine); 7 minutes did
 // not reach 0.2 s. The conservative pair search between stones in contact (sliding, in islands)
 // steps to where a gap could close at the point-speed bound, so stones side by side take tiny
 // passes (docs/physics.md, "World", cost).
