@@ -51,6 +51,9 @@ foreach(core_test
     world/test_world_robustness
     world/test_world_stones
     world/test_world_contacts
+    world/test_world_pair_impacts
+    world/test_world_cradle
+    world/test_world_crowd
     world/test_stone_placement)
   get_filename_component(target ${core_test} NAME)
   catkin_add_gtest(${target} test/${core_test}.cpp)

@@ -243,6 +243,12 @@ TEST(PairImpact, RandomImpactsConserveMomentumAndNeverGainEnergy) {
     worst_angular = std::max(worst_angular, (l_after - l_before).norm() / l_scale);
     EXPECT_LE(imp.energy_change_j, 0.0);
     EXPECT_GE(imp.normal_velocity_after_mps, -1e-12);  // they do not keep approaching
+    // An impact changes velocities only: the positions are bitwise those before (touching, gap
+    // 0), the orientations those before up to their normalisation.
+    EXPECT_TRUE(imp.state_a.position_world == a.position_world &&
+                imp.state_b.position_world == b.position_world);
+    EXPECT_LT((imp.state_a.orientation.coeffs() - a.orientation.coeffs()).norm(), 1e-15);
+    EXPECT_LT((imp.state_b.orientation.coeffs() - b.orientation.coeffs()).norm(), 1e-15);
     total_steps += imp.slip_steps;
     stuck += imp.stuck;
   }

@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <vector>
 
+#include "world/many_stones_support.h"
 #include "world/world_test_support.h"
 
 namespace {
@@ -18,36 +19,10 @@ using namespace worldtest;
 using vg::StoneId;
 using vg::WorldEventKind;
 
-// A lower bound of the signed distance between two lenses (the test's own support mapping): the
-// gap between the two supporting planes with normal n, F(n) = n . (s_B(-n) - s_A(n)), is below
-// the signed distance for every unit n (and equals it at the best n). Its largest value is
-// sought from a scan of directions (a Fibonacci sphere and the centre line), refined by a
-// pattern search on the sphere with shrinking steps.
+// A lower bound of the signed distance between two stones of the default body
+// (many_stones_support.h: supporting planes, the test's own support mapping).
 double pair_gap_bound(const vg::RigidBodyState& sa, const vg::RigidBodyState& sb) {
-  const vgtest::LensReference a = lens_ref(sa), b = lens_ref(sb);
-  const auto along = [&](const Vector3d& n) { return n.dot(b.support(-n) - a.support(n)); };
-  Vector3d best_n = (b.x - a.x).normalized();
-  double best = along(best_n);
-  const int scan = 2000;
-  for (int k = 0; k < scan; ++k) {
-    const double z = 1.0 - (2.0 * k + 1.0) / scan, r = std::sqrt(1.0 - z * z);
-    const double phi = k * M_PI * (3.0 - std::sqrt(5.0));
-    const Vector3d n(r * std::cos(phi), r * std::sin(phi), z);
-    const double f = along(n);
-    if (f > best) best = f, best_n = n;
-  }
-  for (double step = 0.05; step > 1e-12; step *= 0.5) {
-    for (bool improved = true; improved;) {
-      improved = false;
-      const Vector3d u = best_n.unitOrthogonal(), v = best_n.cross(u);
-      for (const Vector3d& d : {u, Vector3d(-u), v, Vector3d(-v)}) {
-        const Vector3d n = (best_n + step * d).normalized();
-        const double f = along(n);
-        if (f > best) best = f, best_n = n, improved = true;
-      }
-    }
-  }
-  return best;
+  return worldtest::pair_gap_bound(lens_ref(sa), lens_ref(sb));
 }
 
 double total_energy(const vg::World& w) {

@@ -1,0 +1,369 @@
+// Newton's cradle through the World (stone contact on): a row of N equal stones, flat and
+// touching rim to rim, struck at one end by a stone moving along the row. Against the analytic
+// cradle (equal masses, frictionless, e* = 1: the striker stops, the last stone leaves with the
+// striker's speed, the others stay; for e* < 1 the cradle of point masses with vanishing gaps,
+// each impact by Newton's 1-D law, the fastest approach first: the rule of
+// contact/simultaneous_impacts.h, checked directly in test/contact/test_simultaneous_impacts.cpp).
+//
+// The World's rule for contacts that close at one instant (docs/physics.md, "World"): one pair
+// per pass, in time order (ties by the pair search's order), each by the two-body Stronge impact
+// (dE <= 0 each, so the sequence never adds energy), as long as both stones fly; a contact with a
+// stone on the board (resting, sliding) is sustained and goes to an island, whose impulses are
+// plastic (e = 0). So:
+//   - a row flying together (no board; gravity cancels in the relative motion), stones face to
+//     face (cap on cap), is the analytic cradle;
+//   - a row on the board struck by a sliding stone is the plastic cradle (all move on together at
+//     v / (N + 1)), not the elastic one (DISABLED_ test below, with the figures);
+//   - a row on the board struck by a stone flying just above it: the lens's rims are sharp, so a
+//     striker that is any higher than the row's rims meets the first stone's top cap near its rim,
+//     where the cap's normal is tilted by ~45 degrees: it rides up over the row (not a cradle).
+// What holds in every case is checked: the energy never rises; on a frictionless board the row's
+// horizontal momentum stays the striker's (the board pushes only vertically); with friction
+// everything rests.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "world/many_stones_support.h"
+#include "world/world_test_support.h"
+
+namespace {
+
+using namespace worldtest;
+using Eigen::Vector3d;
+
+constexpr double kSpeed = 0.5;      // the striker's speed along the row, m/s
+constexpr double kApproach = 5e-4;  // its rim's distance from the first stone's at t = 0, m
+
+enum class Striker { flying_in_the_air, flying_over_the_board, sliding_on_the_board };
+
+const char* name(Striker s) {
+  switch (s) {
+    case Striker::flying_in_the_air:
+      return "in the air";
+    case Striker::flying_over_the_board:
+      return "flying over the board";
+    case Striker::sliding_on_the_board:
+      return "sliding on the board";
+  }
+  return "";
+}
+
+struct Cradle {
+  vg::World world;
+  std::vector<vg::StoneId> row;
+  vg::StoneId striker;
+  std::vector<vg::WorldEvent> events;
+  double t_hit = kApproach / kSpeed;  // the rims meet (no force acts along x before)
+
+  Cradle(int n, Striker how, double stone_restitution, double stone_friction, double board_friction)
+      : world([&] {
+          vg::WorldConfig c = config(0.5, board_friction, board_friction > 0 ? 5e-6 : 0.0,
+                                     board_friction > 0 ? 15e-6 : 0.0);
+          c.stone_contact = true;
+          c.board_enabled = how != Striker::flying_in_the_air;
+          c.stone_material.restitution = stone_restitution;
+          c.stone_material.friction = stone_friction;
+          c.stone_material.rolling_resistance_m = 0.0;
+          c.stone_material.spinning_friction_m = 0.0;
+          return vg::World(c, std::vector<vg::RigidBodyState>{}, 0.0);
+        }()) {
+    // On the board: flat, lowest points on it, centres 2a apart along x (rim touches rim, as
+    // on a Go board). In the air, 0.3 m up: standing on their rims with their axes along x,
+    // centres 2c apart (cap apex touches cap apex: two spheres, the normal is the centre line
+    // whatever the round-off; flat lenses meet edge on edge, where any direction between the
+    // two caps' normals is a normal of the contact and round-off picks one), all at rest and so
+    // falling together.
+    const bool air = how == Striker::flying_in_the_air;
+    const double z = air ? 0.3 : kC, pitch = air ? 2 * kC : 2 * kA;
+    const Eigen::Quaterniond q =
+        air ? Eigen::Quaterniond(Eigen::AngleAxisd(M_PI / 2, Vector3d::UnitY()))
+            : Eigen::Quaterniond::Identity();
+    for (int i = 0; i < n; ++i)
+      row.push_back(world.add_stone(0, at(Vector3d(pitch * i, 0, z), q), 0.0, events));
+    // Over the board: flat at the row's height plus what it falls until the rims meet (and
+    // 0.1 um to spare), its lowest point clear of the board. Sliding: on the board.
+    const double above =
+        how == Striker::flying_over_the_board ? 0.5 * kG * t_hit * t_hit + 1e-7 : 0.0;
+    striker = world.add_stone(
+        0, at(Vector3d(-pitch - kApproach, 0, z + above), q, Vector3d(kSpeed, 0, 0)), 0.0, events);
+  }
+  // Horizontal velocity of every stone, the striker first.
+  std::vector<double> velocities_x() const {
+    std::vector<double> v = {world.state(striker).velocity_world.x()};
+    for (const vg::StoneId id : row) v.push_back(world.state(id).velocity_world.x());
+    return v;
+  }
+  double total_energy() const {
+    double e = 0.0;
+    for (std::size_t i = 0; i < world.stone_count(); ++i)
+      e += energy_of(facts_of(world, i), world.state(i), kGravity);
+    return e;
+  }
+  double momentum_x() const {
+    double p = 0.0;
+    for (std::size_t i = 0; i < world.stone_count(); ++i)
+      p += facts_of(world, i).mass_kg * world.state(i).velocity_world.x();
+    return p;
+  }
+};
+
+// Figures of a run sampled every 0.1 ms up to 5 ms after the hit.
+struct CradleRun {
+  std::vector<double> v;  // velocities_x at the end
+  double worst_rise = 0.0, worst_pair_gap = 1.0, worst_board_gap = 1.0, worst_momentum = 0.0;
+  // Kinetic energy of the horizontal motion and the spin at the end over the striker's at the
+  // start (the common fall left out).
+  double kinetic_kept = 0.0;
+};
+
+CradleRun run_cradle(Cradle& cr, bool board) {
+  CradleRun r;
+  const double m = mass(), k0 = 0.5 * m * kSpeed * kSpeed;
+  double previous = cr.total_energy();
+  const double scale = std::abs(previous) + cr.world.stone_count() * m * kG * kA;
+  const double dt = 1e-4;
+  for (int k = 1; k * dt <= cr.t_hit + 5e-3 + 1e-12; ++k) {
+    cr.world.advance_to(k * dt, cr.events);
+    const double en = cr.total_energy();
+    r.worst_rise = std::max(r.worst_rise, (en - previous) / scale);
+    previous = std::min(previous, en);
+    r.worst_pair_gap = std::min(r.worst_pair_gap, smallest_pair_gap(cr.world));
+    for (std::size_t i = 0; i < cr.world.stone_count() && board; ++i)
+      r.worst_board_gap = std::min(r.worst_board_gap, plane_gap(cr.world.state(i), 0.0));
+    r.worst_momentum =
+        std::max(r.worst_momentum, std::abs(cr.momentum_x() - m * kSpeed) / (m * kSpeed));
+  }
+  r.v = cr.velocities_x();
+  double kinetic = 0.0;
+  for (std::size_t i = 0; i < cr.world.stone_count(); ++i) {
+    const vg::RigidBodyState& s = cr.world.state(i);
+    const StoneFacts f = facts_of(cr.world, i);
+    kinetic += 0.5 * f.mass_kg * s.velocity_world.head<2>().squaredNorm() +
+               0.5 * omega_of(f, s).dot(s.angular_momentum_world);
+  }
+  r.kinetic_kept = kinetic / k0;
+  return r;
+}
+
+std::string row_text(const std::vector<double>& v) {
+  std::string s;
+  char b[32];
+  for (const double x : v) {
+    std::snprintf(b, sizeof b, " %.4f", x);
+    s += b;
+  }
+  return s;
+}
+
+void report(const char* what, int n, Striker how, double e, const Cradle& cr, const CradleRun& r) {
+  std::printf(
+      "[ measured ] %s: %d stones, striker %s, e* %.1f: v_x 5 ms after the hit (striker first)%s "
+      "m/s; kinetic energy kept %.4f; momentum error %.3g; largest energy rise %.3g of E; "
+      "smallest gaps %.3g m (pairs), %.3g m (board); %ld pair impacts, %ld islands\n",
+      what, n, name(how), e, row_text(r.v).c_str(), r.kinetic_kept, r.worst_momentum, r.worst_rise,
+      r.worst_pair_gap, r.worst_board_gap, cr.world.counters().pair_impacts,
+      cr.world.counters().islands_formed);
+}
+
+// The analytic cradle of equal point masses with vanishing gaps (index 0 the striker): collisions
+// one at a time, the fastest approach first, each by Newton's 1-D law for equal masses.
+std::vector<double> point_mass_cradle(int n, double v0, double e) {
+  std::vector<double> v(n, 0.0);
+  v[0] = v0;
+  for (int guard = 0; guard < 1000000; ++guard) {
+    int k = -1;
+    double fastest = 1e-12;
+    for (int i = 0; i + 1 < n; ++i) {
+      if (v[i] - v[i + 1] > fastest) fastest = v[i] - v[i + 1], k = i;
+    }
+    if (k < 0) break;
+    const double vi = v[k], vj = v[k + 1];
+    v[k] = 0.5 * ((1 - e) * vi + (1 + e) * vj);
+    v[k + 1] = 0.5 * ((1 + e) * vi + (1 - e) * vj);
+  }
+  return v;
+}
+
+// A row flying together, struck along its line: the World's sequential pair impacts are the
+// cradle. e* = 1: N impacts, the last stone leaves at the striker's speed, every other stops;
+// e* < 1: the point-mass cradle with vanishing gaps. (Until an impact leaves a pair touching
+// without approaching, below 1e-9 m/s: the World then forms an island, plastic, and the row is
+// no longer the cradle: e* = 0, and e* = 0.5 with 7 stones; DISABLED_ test below.)
+TEST(WorldCradle, ARowFlyingTogetherIsTheAnalyticCradle) {
+  double worst_elastic = 0.0, worst_inelastic = 0.0;
+  for (const int n : {1, 2, 3, 5}) {
+    for (const double e : {1.0, 0.8, 0.5}) {
+      SCOPED_TRACE(::testing::Message() << n << " stones, e* " << e);
+      Cradle cr(n, Striker::flying_in_the_air, e, 0.3, 0.0);
+      const CradleRun r = run_cradle(cr, false);
+      if (n == 5) report("cradle in the air", n, Striker::flying_in_the_air, e, cr, r);
+      const std::vector<double> expected = point_mass_cradle(n + 1, kSpeed, e);
+      double& worst = e == 1.0 ? worst_elastic : worst_inelastic;
+      for (int i = 0; i <= n; ++i) worst = std::max(worst, std::abs(r.v[i] - expected[i]));
+      if (e == 1.0) {
+        EXPECT_EQ(cr.world.counters().pair_impacts, n);
+        for (int i = 0; i < n; ++i) EXPECT_NEAR(r.v[i], 0.0, 1e-12) << i;
+        EXPECT_NEAR(r.v[n], kSpeed, 1e-12);
+      }
+      EXPECT_EQ(cr.world.counters().islands_formed, 0);
+      EXPECT_LT(r.worst_momentum, 1e-14);
+      EXPECT_LE(r.worst_rise, 1e-14);
+      EXPECT_GE(r.worst_pair_gap, -1e-9);
+    }
+  }
+  std::printf(
+      "[ measured ] cradle in the air (1-5 stones) against the point-mass cradle: max |dv| %.3g "
+      "m/s (e* = 1), %.3g m/s (e* 0.8, 0.5)\n",
+      worst_elastic, worst_inelastic);
+  EXPECT_LT(worst_inelastic, 1e-12);
+}
+
+// DISABLED: a World defect (src/world). In the air, an impact that leaves two stones touching
+// without approaching (e* = 0; or e* = 0.5 with 7 stones, where late impacts are that slow)
+// makes an island of them (plastic); a touching pair that does not approach when a pass begins
+// is let be for the pass, and within it one stone is pushed into the next. Measured (5 ms after
+// the hit, sampled every 0.1 ms): e* = 0, 5 stones: overlap 1.0e-5 m, momentum error 7.1e-13
+// (relative; round-off is 1e-16); e* = 0, 7 stones: 2.14e-5 m, 5.0e-13; e* = 0.5, 7 stones: no
+// overlap, momentum error 5.3e-13, and the row ends plastic (v_x 0.0595, 0.0623 x 6, 0.0667 m/s)
+// instead of the point-mass cradle's. For e* = 0 the velocities (v / (N + 1) each) are right.
+TEST(WorldCradle, DISABLED_ARowFlyingTogetherWithPlasticContactsNeverOverlaps) {
+  for (const auto& [n, e] : {std::pair{5, 0.0}, std::pair{7, 0.0}, std::pair{7, 0.5}}) {
+    SCOPED_TRACE(::testing::Message() << n << " stones, e* " << e);
+    Cradle cr(n, Striker::flying_in_the_air, e, 0.3, 0.0);
+    const CradleRun r = run_cradle(cr, false);
+    report("cradle in the air", n, Striker::flying_in_the_air, e, cr, r);
+    EXPECT_GE(r.worst_pair_gap, -1e-9);
+    EXPECT_LT(r.worst_momentum, 1e-14);
+    const std::vector<double> expected = point_mass_cradle(n + 1, kSpeed, e);
+    for (int i = 0; i <= n; ++i) EXPECT_NEAR(r.v[i], expected[i], 1e-12) << i;
+  }
+}
+
+// On a frictionless board, whatever strikes the row: the energy never rises, the board pushes
+// only vertically so the horizontal momentum stays the striker's, nothing dips into the board,
+// and a striker flying just above the row never overlaps it.
+TEST(WorldCradle, OnTheBoardTheRowKeepsMomentumAndNeverGainsEnergy) {
+  for (const int n : {2, 3, 5}) {
+    for (const double e : {1.0, 0.5}) {
+      for (const Striker how : {Striker::flying_over_the_board, Striker::sliding_on_the_board}) {
+        SCOPED_TRACE(::testing::Message() << n << " stones, e* " << e << ", " << name(how));
+        Cradle cr(n, how, e, 0.0, 0.0);
+        const CradleRun r = run_cradle(cr, true);
+        report("cradle on a frictionless board", n, how, e, cr, r);
+        // Not round-off: measured 7.3e-7 with a flying striker, 3.5e-16 with a sliding one;
+        // probably the island's energy guard, which scales its members' velocities by one
+        // factor (world/nonsmooth_island.h, step 4) and so does not keep momentum exactly.
+        EXPECT_LT(r.worst_momentum, 1e-6);
+        EXPECT_LE(r.worst_rise, 1e-11);
+        EXPECT_GE(r.worst_board_gap, -1e-9);
+        if (how == Striker::flying_over_the_board) {
+          EXPECT_GE(r.worst_pair_gap, -1e-9);
+        }
+        // The first stone-stone event is the striker's on the first stone, when the rims meet
+        // (over the board the striker's rim passes 0.1 um above the first stone's and meets its
+        // cap within 1 um further; sliding, the island forms within its 1 nm margin).
+        const vg::WorldEvent* first = nullptr;
+        for (const vg::WorldEvent& ev : cr.events) {
+          if (ev.other) {
+            first = &ev;
+            break;
+          }
+        }
+        ASSERT_NE(first, nullptr);
+        EXPECT_NEAR(first->time_s, cr.t_hit, 1e-6);
+      }
+    }
+  }
+}
+
+// DISABLED: a World defect (src/world, not this branch's to fix). A row resting on the board
+// struck by a sliding stone: the first stone joins the striker's island while it does not yet
+// approach the second (both at rest), so that pair is "let be for the pass"; within the pass
+// (0.1 ms here) the island pushes the first stone into the second. Measured: overlaps of
+// 1.19e-5 m (3 stones) and 2.13e-5 m (5 stones) in handed-out states, i.e. the pass length times
+// the row's speed (0.125 and 0.083 m/s). docs/physics.md, "World", lists this ("a touching pair
+// let be for a pass may start to approach within it").
+TEST(WorldCradle, DISABLED_OnTheBoardASlidingStrikerNeverPushesOneStoneIntoAnother) {
+  for (const int n : {2, 3, 5}) {
+    SCOPED_TRACE(::testing::Message() << n << " stones");
+    Cradle cr(n, Striker::sliding_on_the_board, 1.0, 0.0, 0.0);
+    const CradleRun r = run_cradle(cr, true);
+    EXPECT_GE(r.worst_pair_gap, -1e-9);
+  }
+}
+
+// DISABLED: the World's rule on the board is not the elastic cradle. Frictionless stones and
+// board, e* = 1, a sliding striker (rim meets rim on the centre line, a central impact): the
+// analytic cradle sends the last stone off at the striker's speed. The World hands a contact
+// with a stone on the board to an island, whose impulses are plastic (e = 0), so the whole row
+// moves on together: measured v_x = v / (N + 1) for every stone (0.1667, 0.125, 0.0833 m/s for
+// 2, 3, 5 stones), kinetic energy kept 1 / (N + 1). The elastic cradle on the board needs the
+// two-body impact (or contact/simultaneous_impacts) for stones the board holds.
+TEST(WorldCradle, DISABLED_OnTheBoardAnElasticFrictionlessRowIsTheAnalyticCradle) {
+  for (const int n : {2, 3, 5}) {
+    SCOPED_TRACE(::testing::Message() << n << " stones");
+    Cradle cr(n, Striker::sliding_on_the_board, 1.0, 0.0, 0.0);
+    const CradleRun r = run_cradle(cr, true);
+    for (int i = 0; i < n; ++i) EXPECT_NEAR(r.v[i], 0.0, 1e-6) << i;
+    EXPECT_NEAR(r.v[n], kSpeed, 1e-6);
+  }
+}
+
+// With friction on the board (the default material) and between the stones, a row of 3 struck
+// by a stone flying just above it comes to rest in finite time, the energy never rising, nothing
+// dipping into the board.
+struct RealBoardRun {
+  double worst_rise = 0.0, worst_gap = 1.0, worst_board = 1.0, rest_at = -1.0;
+};
+
+RealBoardRun run_real_board() {
+  Cradle cr(3, Striker::flying_over_the_board, 0.8, 0.3, 0.3);
+  RealBoardRun r;
+  double previous = cr.total_energy();
+  const double scale = std::abs(previous) + 4 * mass() * kG * kA;
+  const double dt = 1e-3;
+  for (int k = 1; k * dt <= 5.0 + 1e-12; ++k) {
+    cr.world.advance_to(k * dt, cr.events);
+    const double en = cr.total_energy();
+    r.worst_rise = std::max(r.worst_rise, (en - previous) / scale);
+    previous = std::min(previous, en);
+    r.worst_gap = std::min(r.worst_gap, smallest_pair_gap(cr.world));
+    for (std::size_t i = 0; i < cr.world.stone_count(); ++i)
+      r.worst_board = std::min(r.worst_board, plane_gap(cr.world.state(i), 0.0));
+    if (cr.world.all_resting()) {
+      r.rest_at = k * dt;
+      break;
+    }
+  }
+  const vg::WorldCounters& c = cr.world.counters();
+  std::printf(
+      "[ measured ] cradle on the board (3 + striker, e* 0.8, mu 0.3): all rest at %.3f s; "
+      "largest energy rise %.3g of E; smallest gaps %.3g m (pairs), %.3g m (board); "
+      "%ld pair impacts, %ld islands, %ld island sub-steps, %ld passes, %ld gap checks\n",
+      r.rest_at, r.worst_rise, r.worst_gap, r.worst_board, c.pair_impacts, c.islands_formed,
+      c.nonsmooth_steps, c.stages, c.pair_gap_checks);
+  return r;
+}
+
+TEST(WorldCradle, OnARealBoardTheRowComesToRest) {
+  const RealBoardRun r = run_real_board();
+  EXPECT_GT(r.rest_at, 0.0);
+  EXPECT_LE(r.worst_rise, 1e-11);
+  EXPECT_GE(r.worst_board, -1e-9);
+  // Measured 1.17e-8 m: DISABLED_OnARealBoardNoTwoStonesOverlap holds it to 1e-9 m.
+  EXPECT_GE(r.worst_gap, -1e-7);
+}
+
+// DISABLED: a World defect (src/world). The run above: an overlap of 1.17e-8 m between two
+// stones of the row in a handed-out state (the goal: 1e-9 m). It rests at 0.140 s after 372
+// islands, 790,210 passes and 1,743,079 pair gap checks (22 s of CPU in this -O2 test build):
+// the cost docs/physics.md, "World", describes.
+TEST(WorldCradle, DISABLED_OnARealBoardNoTwoStonesOverlap) {
+  EXPECT_GE(run_real_board().worst_gap, -1e-9);
+}
+
+}  // namespace

