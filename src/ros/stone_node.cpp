@@ -375,8 +375,11 @@ void StoneNode::publish_state(std::int64_t stamp_ns) {
   // One TFMessage per tick: the initial stone, every placed stone that moves, and each resting
   // placed stone once when it comes to rest and then every kRestingTfPeriodNs of simulated time
   // (well inside tf's 10 s cache, so rviz and tf_echo keep finding it) rather than every tick.
-  std::vector<geometry_msgs::TransformStamped> transforms{
-      to_transform_msg(output, stamp, c.world_frame, c.stone_frame)};
+  // The initial stone while it is there (~remove and ~clear take it off, ~reset puts it back).
+  std::vector<geometry_msgs::TransformStamped> transforms;
+  if (sim_.initial_present()) {
+    transforms.push_back(to_transform_msg(output, stamp, c.world_frame, c.stone_frame));
+  }
   std::map<std::string, std::int64_t> sent;
   for (const PlacedStone& p : sim_.placed_stones()) {
     const World& world = *sim_.world();
@@ -394,7 +397,8 @@ void StoneNode::publish_state(std::int64_t stamp_ns) {
     sent[p.name] = stamp_ns;
   }
   tf_sent_ns_ = std::move(sent);  // removed stones are forgotten
-  tf_broadcaster_.sendTransform(transforms);
+  if (!transforms.empty()) tf_broadcaster_.sendTransform(transforms);
+  if (!sim_.initial_present()) return;  // ~pose and ~odom are the initial stone's
   if (pose_pub_.getNumSubscribers() > 0) {
     pose_pub_.publish(to_pose_stamped_msg(output, stamp, c.world_frame));
   }
@@ -407,7 +411,10 @@ bool StoneNode::on_set_angular_velocity(SetAngularVelocity::Request& request,
                                         SetAngularVelocity::Response& response) {
   answer(
       "set_angular_velocity",
-      [&] { return sim_.set_angular_velocity(to_eigen(request.angular_velocity), request.frame); },
+      [&] {
+        return sim_.set_angular_velocity(to_eigen(request.angular_velocity), request.frame,
+                                         request.name);
+      },
       response);
   return true;
 }
@@ -477,7 +484,8 @@ bool StoneNode::on_set_state(SetState::Request& request, SetState::Response& res
       "set_state",
       [&] {
         return sim_.set_state(to_eigen(request.pose.position), to_xyzw(request.pose.orientation),
-                              to_eigen(request.twist.linear), to_eigen(request.twist.angular));
+                              to_eigen(request.twist.linear), to_eigen(request.twist.angular),
+                              request.name);
       },
       response);
   return true;
