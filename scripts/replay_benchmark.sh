@@ -113,13 +113,14 @@ board: {enabled: true}
 initial: {position: [0.0, 0.0, 0.0046], orientation: [0.0, 0.0, 0.0, 1.0], velocity: [0.0, 0.0, 0.0], angular_velocity: [0.0, 0.0, 0.0]}
 auto_reset_period: 0.0
 auto_reset_after_rest: 0.0
+publish_clock: false
+real_time_factor: 1.0
 '
 
 # ---- (a) the replay against the clock the node publishes.
 replay_row() {  # $1: drop height
-  start_node "$node_bin" "$flat_at_tengen
-publish_clock: true
-real_time_factor: 0.0"
+  local params="${flat_at_tengen/publish_clock: false/publish_clock: true}"
+  start_node "$node_bin" "${params/real_time_factor: 1.0/real_time_factor: 0.0}"
   /usr/bin/python3 - "$replay_bin" "$game" "$interval" "$1" <<'EOF'
 import re, subprocess, sys, time
 import rospy
@@ -156,7 +157,9 @@ cpu_row() {  # $1: label of the build, $2: binary, $3: case
 rate: 60.0
 board: {enabled: false}
 initial: {position: [0.0, 0.0, 0.0], velocity: [0.0, 0.0, 0.0]}
-auto_reset_period: 0.0' ;;
+auto_reset_period: 0.0
+publish_clock: false
+real_time_factor: 1.0' ;;
     "1 resting") ;;
     "361 resting") places=1 ;;
   esac
