@@ -86,6 +86,7 @@ cleanup() {
 }
 trap cleanup EXIT
 
+: >"$ROS_HOME/replay_benchmark_node.log"  # every node's output, appended
 roscore -p "$port" >"$ROS_HOME/replay_benchmark_roscore.log" 2>&1 &
 pids+=($!)
 for _ in $(seq 50); do rosparam list >/dev/null 2>&1 && break; sleep 0.2; done
@@ -96,7 +97,7 @@ start_node() {
   rosparam set use_sim_time false
   printf '%s\n' "$2" >"$ROS_HOME/replay_benchmark_params.yaml"
   rosparam load "$ROS_HOME/replay_benchmark_params.yaml" /stone
-  "$1" __name:=stone >"$ROS_HOME/replay_benchmark_node.log" 2>&1 &
+  "$1" __name:=stone >>"$ROS_HOME/replay_benchmark_node.log" 2>&1 &
   node_pid=$!
   pids+=("$node_pid")
   for _ in $(seq 100); do rosservice list 2>/dev/null | grep -q '^/stone/reset$' && break; sleep 0.1; done
