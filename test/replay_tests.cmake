@@ -13,7 +13,10 @@ target_compile_definitions(test_replay PRIVATE VG_README="${PROJECT_SOURCE_DIR}/
 # Paths reach the test through a file in the devel space (found with catkin's
 # find_in_workspaces), never as rostest arguments: catkin names a rostest's targets after its
 # arguments, so a path there would grow the names with the checkout path (issue 18).
+string(REPLACE ";" " " self_play_games "${gnugo_games}")
 file(WRITE ${CATKIN_DEVEL_PREFIX}/share/${PROJECT_NAME}/test_data_paths.txt
-  "game ${VG_KIGO_GAMES}/Honinbo-51-5.sgf\ngnugo ${VG_GNUGO}\n")
+  "game ${VG_KIGO_GAMES}/Honinbo-51-5.sgf\ngnugo ${VG_GNUGO}\nselfplay ${self_play_games}\n")
 add_rostest(test/replay/sgf_replay.test DEPENDENCIES sgf_replay)
-add_rostest(test/replay/sgf_replay_node.test DEPENDENCIES sgf_replay stone_node)
+# Also GNU Go's self-play games (test/go_tests.cmake makes them).
+add_rostest(test/replay/sgf_replay_node.test DEPENDENCIES sgf_replay stone_node
+  gnugo_selfplay_games)

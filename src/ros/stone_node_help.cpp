@@ -117,16 +117,20 @@ Subscribed:
 
 Services (changes take effect at the next physics step, which starts a new segment):
   ~set_angular_velocity  virtual_go/SetAngularVelocity: angular_velocity rad/s, frame
-                         "world" (default) or "stone"; rigid_body sets L = I w
-  ~reset                 std_srvs/Trigger: back to the initial state (ROS time keeps running)
-  ~set_state             virtual_go/SetState: pose and twist in the world frame
+                         "world" (default) or "stone"; rigid_body sets L = I w; `name`: the
+                         stone (empty: the initial stone `stone`)
+  ~reset                 std_srvs/Trigger: the initial stone back to its initial state (also
+                         after ~remove or ~clear took it off; ROS time keeps running)
+  ~set_state             virtual_go/SetState: pose and twist in the world frame of stone
+                         `name` (empty: `stone`); an unknown or removed name is refused
   ~place                 virtual_go/PlaceStone (with the board): a stone of `color` at Go
                          `point` ("A1".."T19"; set down at rest, or dropped from drop_height
                          m, 0 to )"
       << kMaxDropHeightM << R"() or at `pose`; answers its name
                          (black_1, white_1, ...: never reused; also its tf frame)
-  ~remove                virtual_go/RemoveStone: a placed stone by name or by Go point
-  ~clear                 std_srvs/Trigger: removes every placed stone (`stone` stays)
+  ~remove                virtual_go/RemoveStone: a stone by name or by Go point
+  ~clear                 std_srvs/Trigger: removes every stone, `stone` too (~reset puts it
+                         back)
   ~pause                 std_srvs/Empty (as gazebo's pause_physics): no step is taken until
                          ~step or ~unpause; requests wait for the next step
   ~unpause               std_srvs/Empty: run again; following ROS time, the paused interval

@@ -42,10 +42,7 @@ ClickOutcome ClickPlacement::click(StoneSimulation& sim, const Eigen::Vector3d& 
     return out;
   }
   out.point = gtp_name(*point);
-  // The initial stone is not a placed stone, but lies on the board all the same.
-  const std::optional<GoPoint> initial = nearest_go_point(board, sim.state().position_world);
-  std::string occupant = sim.placed_stone_at(*point);
-  if (occupant.empty() && initial && *initial == *point) occupant = sim.stone_name(0);
+  const std::string occupant = sim.stone_at(*point);
   if (!occupant.empty()) {
     out.message = "click at " + out.point + " places nothing: " + occupant + " already lies there";
     return out;

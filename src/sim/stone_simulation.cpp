@@ -118,8 +118,12 @@ void StoneSimulation::reset_world(const RigidBodyState& state, double t_s) {
   // they are, at rest if they rested (a stone set down flat on the board rests at once).
   std::vector<RigidBodyState> placed_states;
   for (const PlacedStone& p : placed_) placed_states.push_back(world_->state(p.id));
-  world_->reset({state}, t_s);
-  initial_id_ = world_->id(0);
+  if (initial_removed_) {
+    world_->reset({}, t_s);
+  } else {
+    world_->reset({state}, t_s);
+    initial_id_ = world_->id(0);
+  }
   // Their events at t_s (a resting stone re-added rests at once) are not reported: the stones
   // only go on, on the new time line.
   std::vector<WorldEvent> ignored;
@@ -159,7 +163,8 @@ void StoneSimulation::restart_world(std::int64_t stamp_ns, UpdateResult& result)
   std::vector<SegmentEvent> events;
   for (const WorldEvent& e : world_events_) events.push_back(segment_event(e));
   commit_events(events, result);
-  state_ = world_->state(0);
+  if (initial_removed_) return;
+  state_ = world_->state(initial_id_);
   output_ = state_output(checked_.setup.model, state_);
   output_stale_ = false;
 }
@@ -223,6 +228,10 @@ std::string StoneSimulation::place(const PlaceRequest& request, std::string& ans
     change.drop_height_m = h;
     change.velocity_world = request.velocity_world;
     change.angular_velocity_world = request.angular_velocity_world;
+    if (h == 0.0 && change.velocity_world.isZero(0.0) &&
+        change.angular_velocity_world.isZero(0.0)) {
+      check_room(world_->color_body(color), *change.point);
+    }
   } else {
     // The colour's body is made once, here if not yet (World::color_body): its lens decides
     // whether the pose overlaps the board.
@@ -246,10 +255,9 @@ std::string StoneSimulation::place(const PlaceRequest& request, std::string& ans
 
 std::string StoneSimulation::remove(const std::string& name_or_point, std::string& answer_out) {
   require_board("~remove");
+  const std::vector<std::string> present = names_after_pending();
   if (name_or_point == stone_name(0)) {
-    throw InvalidArgument("name", "name: '" + name_or_point +
-                                      "' is the initial stone, which stays (~reset or "
-                                      "~set_state move it)");
+    (void)request_target(name_or_point);  // refuses it if removed already
   }
   std::string name;
   const auto pending_place = [&](const std::string& n) {
@@ -261,8 +269,11 @@ std::string StoneSimulation::remove(const std::string& name_or_point, std::strin
     return std::any_of(placed_.begin(), placed_.end(),
                        [&](const PlacedStone& p) { return p.name == n; });
   };
-  if (is_placed(name_or_point) || pending_place(name_or_point)) {
+  if (name_or_point == stone_name(0) || is_placed(name_or_point) || pending_place(name_or_point)) {
     name = name_or_point;
+    if (std::find(present.begin(), present.end(), name) == present.end()) {
+      (void)request_target(name);  // removed by a request waiting: refused, naming it
+    }
   } else {
     GoPoint point;
     try {
@@ -271,7 +282,7 @@ std::string StoneSimulation::remove(const std::string& name_or_point, std::strin
       throw InvalidArgument("name", "name: no stone named '" + name_or_point +
                                         "' and not a Go point \"A1\" ... \"T19\"");
     }
-    name = placed_stone_at(point);
+    name = stone_at(point);
     if (name.empty()) {
       throw InvalidArgument("name", "name: no stone at " + gtp_name(point));
     }
@@ -284,7 +295,7 @@ std::string StoneSimulation::remove(const std::string& name_or_point, std::strin
   return name;
 }
 
-std::string StoneSimulation::placed_stone_at(GoPoint point) const {
+std::string StoneSimulation::stone_at(GoPoint point) const {
   if (!world_) return "";
   for (auto it = pending_.rbegin(); it != pending_.rend(); ++it) {
     if (it->reason == EventReason::place && it->point && *it->point == point) return it->name;
@@ -292,17 +303,22 @@ std::string StoneSimulation::placed_stone_at(GoPoint point) const {
   if (world_->config().board.lines != kGoLines) return "";
   const BoardGeometry& board = world_->config().board;
   const Eigen::Vector3d at = go_point_world(board, point);
+  const std::vector<std::string> present = names_after_pending();
   std::string name;
   double best = std::numeric_limits<double>::infinity();
-  for (const PlacedStone& p : placed_) {
-    const Eigen::Vector3d x = world_->state(p.id).position_world;
+  const auto consider = [&](const std::string& n, StoneId id) {
+    // Only stones still there once the waiting requests apply.
+    if (std::find(present.begin(), present.end(), n) == present.end()) return;
+    const Eigen::Vector3d x = world_->state(id).position_world;
     const std::optional<GoPoint> nearest = nearest_go_point(board, x);
     const double d = (x - at).head<2>().norm();
     if (nearest && *nearest == point && d < best) {
       best = d;
-      name = p.name;
+      name = n;
     }
-  }
+  };
+  if (!initial_removed_) consider(stone_name(0), initial_id_);
+  for (const PlacedStone& p : placed_) consider(p.name, p.id);
   return name;
 }
 
@@ -314,7 +330,7 @@ std::string StoneSimulation::clear() {
   return answer();
 }
 
-void StoneSimulation::apply_board_changes(double t_s, std::int64_t stamp_ns,
+void StoneSimulation::apply_board_changes(double t_s, std::int64_t stamp_ns, std::size_t batch_end,
                                           std::vector<SegmentEvent>& events) {
   World& world = *world_;
   const auto command_event = [&](EventReason reason, const std::string& name, StoneId id) {
@@ -333,13 +349,33 @@ void StoneSimulation::apply_board_changes(double t_s, std::int64_t stamp_ns,
     placed_.erase(placed_.begin() + static_cast<std::ptrdiff_t>(k));
     body_of_placed_.erase(body_of_placed_.begin() + static_cast<std::ptrdiff_t>(k));
   };
-  for (const Change& change : pending_) {
-    if (!change.on_board()) continue;
+  const auto remove_initial = [&](EventReason reason) {
+    if (initial_removed_) return;
+    command_event(reason, stone_name(0), initial_id_);
+    std::vector<WorldEvent> none;
+    world.remove_stone(initial_id_, t_s, none);
+    initial_removed_ = true;
+    rest_since_ns_ = -1;
+  };
+  for (std::size_t n = 0; n < pending_.size(); ++n) {
+    const Change& change = pending_[n];
+    if (!change.on_board()) {
+      // The initial stone's changes before batch_end went to the World in one (step_world).
+      if (!change.initial_stone() || n >= batch_end) {
+        apply_state_change(change, t_s, stamp_ns, events);
+      }
+      continue;
+    }
     if (change.reason == EventReason::clear) {
+      remove_initial(EventReason::clear);
       while (!placed_.empty()) remove_placed(0, EventReason::clear);
       continue;
     }
     if (change.reason == EventReason::remove) {
+      if (change.name == stone_name(0)) {
+        remove_initial(EventReason::remove);
+        continue;
+      }
       for (std::size_t k = 0; k < placed_.size(); ++k) {
         if (placed_[k].name == change.name) {
           remove_placed(k, EventReason::remove);
@@ -373,15 +409,72 @@ void StoneSimulation::apply_board_changes(double t_s, std::int64_t stamp_ns,
   }
 }
 
+void StoneSimulation::apply_state_change(const Change& change, double t_s, std::int64_t stamp_ns,
+                                         std::vector<SegmentEvent>& events) {
+  World& world = *world_;
+  std::vector<WorldEvent> world_events;
+  const auto command = [&](const std::string& name, StoneId id) {
+    SegmentEvent e;
+    e.stamp_ns = stamp_ns;
+    e.reason = change.reason;
+    e.stone = name;
+    e.state = world.state(id);
+    e.output = state_output(model_of(id), e.state);
+    return e;
+  };
+  if (change.initial_stone() && initial_removed_) {
+    // Removed earlier: only a reset brings it back (the others were refused when asked, unless
+    // a reset came first).
+    if (change.reason != EventReason::reset) return;
+    initial_id_ = world.add_stone(0, checked_.initial_state, t_s, world_events);
+    initial_removed_ = false;
+    events.push_back(command(stone_name(0), initial_id_));
+    for (const WorldEvent& e : world_events) events.push_back(segment_event(e));
+    return;
+  }
+  StoneId id = initial_id_;
+  std::string name = stone_name(0);
+  if (!change.initial_stone()) {
+    const auto it = std::find_if(placed_.begin(), placed_.end(),
+                                 [&](const PlacedStone& p) { return p.name == change.name; });
+    if (it == placed_.end()) return;  // removed by a request before it in this step
+    id = it->id;
+    name = it->name;
+  }
+  const MotionModel& model = model_of(id);
+  RigidBodyState next = change.state;
+  if (change.reason == EventReason::reset) next = checked_.initial_state;
+  if (change.reason == EventReason::set_angular_velocity) {
+    const RigidBodyState& now = world.state(id);
+    const Eigen::Vector3d omega_world = change.frame == RequestFrame::body
+                                            ? rotate_without_overflow(now.orientation, change.omega)
+                                            : change.omega;
+    next = with_angular_velocity_world(model, now, omega_world);
+  }
+  world.set_state(id, next, t_s, world_events);  // a resting stone wakes first
+  std::size_t i = 0;
+  for (; i < world_events.size() && world_events[i].kind == WorldEventKind::wake; ++i) {
+    events.push_back(segment_event(world_events[i]));
+  }
+  SegmentEvent e = command(name, id);
+  e.state = next;
+  e.output = state_output(model, next);
+  events.push_back(std::move(e));
+  for (; i < world_events.size(); ++i) events.push_back(segment_event(world_events[i]));
+}
+
 std::string StoneSimulation::reset() {
   enqueue({EventReason::reset, checked_.initial_state, {}, {}});
   return answer();
 }
 
 std::string StoneSimulation::set_angular_velocity(const Eigen::Vector3d& omega,
-                                                  const std::string& frame) {
+                                                  const std::string& frame,
+                                                  const std::string& name) {
+  const std::string target = request_target(name);
   const StoneConfig& c = checked_.config;
-  const RequestFrame f = request_frame("frame", frame, c.world_frame, c.stone_frame);
+  const RequestFrame f =
+      request_frame("frame", frame, c.world_frame, target.empty() ? c.stone_frame : target);
   check_angular_velocity("angular_velocity", omega, checked_.limits);
   if (held_ && !replacement_due()) {
     // It would only change a state that cannot move: say so instead of "applied".
@@ -390,20 +483,156 @@ std::string StoneSimulation::set_angular_velocity(const Eigen::Vector3d& omega,
                          "; ~reset or ~set_state replaces it, after which angular velocity "
                          "requests apply again");
   }
-  enqueue({EventReason::set_angular_velocity, {}, omega, f});
+  Change change;
+  change.reason = EventReason::set_angular_velocity;
+  change.omega = omega;
+  change.frame = f;
+  change.name = target;
+  enqueue(change);
   return answer();
 }
 
 std::string StoneSimulation::set_state(const Eigen::Vector3d& position_world,
                                        const Eigen::Vector4d& orientation_xyzw,
                                        const Eigen::Vector3d& velocity_world,
-                                       const Eigen::Vector3d& angular_velocity_world) {
-  const RigidBodyState s = state_from_request(
-      {"pose.position", "pose.orientation", "twist.linear", "twist.angular"}, checked_.setup.model,
-      position_world, orientation_xyzw, velocity_world, angular_velocity_world, checked_.limits);
-  check_clear_of_board("pose.position", s);
-  enqueue({EventReason::set_state, s, {}, {}});
+                                       const Eigen::Vector3d& angular_velocity_world,
+                                       const std::string& name) {
+  const std::string target = request_target(name);
+  const StateFieldNames fields{"pose.position", "pose.orientation", "twist.linear",
+                               "twist.angular"};
+  Change change;
+  change.reason = EventReason::set_state;
+  change.omega = Eigen::Vector3d::Zero();
+  change.name = target;
+  if (target.empty()) {
+    change.state =
+        state_from_request(fields, checked_.setup.model, position_world, orientation_xyzw,
+                           velocity_world, angular_velocity_world, checked_.limits);
+    check_clear_of_board("pose.position", change.state);
+  } else {
+    // A placed stone (or one waiting to be): its colour's body.
+    const auto placed = std::find_if(placed_.begin(), placed_.end(),
+                                     [&](const PlacedStone& p) { return p.name == target; });
+    StoneColor color = StoneColor::black;
+    if (placed != placed_.end()) {
+      color = placed->color;
+    } else {
+      for (const Change& c : pending_) {
+        if (c.reason == EventReason::place && c.name == target) color = c.color;
+      }
+    }
+    const WorldBodyModel& body = world_->body_model(world_->color_body(color));
+    change.state = state_from_request(fields, body.setup().model, position_world, orientation_xyzw,
+                                      velocity_world, angular_velocity_world, checked_.limits);
+    check_clear_of_board("pose.position", change.state, &body.board());
+  }
+  enqueue(change);
   return answer();
+}
+
+std::vector<std::string> StoneSimulation::names_after_pending() const {
+  std::vector<std::string> names;
+  if (!initial_removed_) names.push_back(stone_name(0));
+  for (const PlacedStone& p : placed_) names.push_back(p.name);
+  const auto drop = [&](const std::string& n) {
+    names.erase(std::remove(names.begin(), names.end(), n), names.end());
+  };
+  for (const Change& c : pending_) {
+    if (c.reason == EventReason::clear) names.clear();
+    if (c.reason == EventReason::remove) drop(c.name);
+    if (c.reason == EventReason::place) names.push_back(c.name);
+    if (c.reason == EventReason::reset && c.initial_stone()) {
+      drop(stone_name(0));
+      names.insert(names.begin(), stone_name(0));
+    }
+  }
+  return names;
+}
+
+std::string StoneSimulation::request_target(const std::string& name) const {
+  if (name.empty() && !world_) return "";  // without the board there is the one stone
+  const std::string target = name.empty() ? stone_name(0) : name;
+  const std::vector<std::string> names = names_after_pending();
+  if (std::find(names.begin(), names.end(), target) != names.end()) {
+    return target == stone_name(0) ? "" : target;
+  }
+  // Gone (removed, cleared) or never there: say which, and what there is (the first few).
+  const bool was_here = target == stone_name(0) ||
+                        std::any_of(placed_.begin(), placed_.end(),
+                                    [&](const PlacedStone& p) { return p.name == target; }) ||
+                        std::any_of(pending_.begin(), pending_.end(), [&](const Change& c) {
+                          return c.reason == EventReason::place && c.name == target;
+                        });
+  std::string message = "name: " + quote_user_text(target) +
+                        (was_here ? std::string(" is removed (by ~remove or ~clear") +
+                                        (target == stone_name(0) ? "; ~reset puts it back)" : ")")
+                                  : std::string(" is no stone"));
+  constexpr std::size_t kListed = 12;
+  if (names.empty()) {
+    message += "; there are no stones";
+  } else {
+    message += "; the stones are";
+    for (std::size_t k = 0; k < names.size() && k < kListed; ++k) {
+      message += (k ? ", " : " ") + names[k];
+    }
+    if (names.size() > kListed) {
+      message += " and " + std::to_string(names.size() - kListed) + " more";
+    }
+  }
+  throw InvalidArgument("name", message);
+}
+
+void StoneSimulation::check_room(std::size_t body, GoPoint point) {
+  // The planner's layout now, then as each request waiting changes it, in order.
+  std::vector<PlanStone> stones = plan_stones(*world_);
+  std::vector<std::string> names(stones.size());
+  for (std::size_t i = 0; i < stones.size(); ++i) names[i] = name_of(stones[i].id);
+  const auto drop = [&](const std::string& n) {
+    for (std::size_t i = 0; i < names.size(); ++i) {
+      if (names[i] != n) continue;
+      names.erase(names.begin() + static_cast<std::ptrdiff_t>(i));
+      stones.erase(stones.begin() + static_cast<std::ptrdiff_t>(i));
+      return;
+    }
+  };
+  const auto teleport = [&](const std::string& n, const RigidBodyState& state) {
+    for (std::size_t i = 0; i < names.size(); ++i) {
+      if (names[i] != n) continue;
+      stones[i].centre_xy = state.position_world.head<2>();
+      stones[i].z_m = state.position_world.z();
+      stones[i].movable = false;  // moving, or resting only after the step
+    }
+  };
+  for (const Change& c : pending_) {
+    if (c.reason == EventReason::clear) {
+      stones.clear();
+      names.clear();
+    } else if (c.reason == EventReason::remove) {
+      drop(c.name);
+    } else if (c.reason == EventReason::place && c.point && c.drop_height_m == 0.0 &&
+               c.velocity_world.isZero(0.0) && c.angular_velocity_world.isZero(0.0)) {
+      try {
+        apply_plan(stones, plan_set_down(*world_, world_->color_body(c.color), *c.point, stones));
+        names.push_back(c.name);
+      } catch (const InvalidArgument&) {
+        // That one will be refused when it applies (the layout moved since it was accepted).
+      }
+    } else if (c.reason == EventReason::set_state) {
+      teleport(c.name.empty() ? stone_name(0) : c.name, c.state);
+    } else if (c.reason == EventReason::reset) {
+      drop(stone_name(0));
+      const RigidBodyState& s = checked_.initial_state;
+      stones.push_back(PlanStone{StoneId{}, s.position_world.head<2>(), s.position_world.z(),
+                                 world_->body_model(0).lens().half_width(), false});
+      names.push_back(stone_name(0));
+    } else if (c.reason == EventReason::set_angular_velocity) {
+      for (std::size_t i = 0; i < names.size(); ++i) {
+        if (names[i] == (c.name.empty() ? stone_name(0) : c.name)) stones[i].movable = false;
+      }
+    }
+    // Drops and stones placed by pose start in the air: not in a set-down's way at that step.
+  }
+  (void)plan_set_down(*world_, body, point, stones);  // throws "point": no room
 }
 
 void StoneSimulation::replace_state(const RigidBodyState& state) {
@@ -436,6 +665,7 @@ void StoneSimulation::announce(EventReason reason, std::int64_t stamp_ns,
 }
 
 bool StoneSimulation::auto_reset_due(std::int64_t next_ns) const {
+  if (initial_removed_) return false;  // ~reset alone brings it back
   const std::int64_t auto_reset_ns = checked_.auto_reset_ns;
   if (auto_reset_ns > 0 && next_ns - segment_start_ns_ >= auto_reset_ns) return true;
   const std::int64_t after_rest_ns = checked_.auto_reset_after_rest_ns;
@@ -499,8 +729,10 @@ void StoneSimulation::jump_to(std::int64_t now_ns, const std::string& detail,
   // A held state is only re-timed (so a reset takes effect near ROS time): announcing or
   // publishing it would present the stale state as new.
   if (held_) return;
-  begin_segment(EventReason::time_jump, now_ns, result);
-  result.events.back().detail = detail;
+  if (!initial_removed_) {
+    begin_segment(EventReason::time_jump, now_ns, result);
+    result.events.back().detail = detail;
+  }
   behind_ = false;
   restart_world(now_ns, result);
   result.advanced = true;
@@ -669,14 +901,16 @@ namespace virtual_go {
 // The changes due at this step (an auto reset, then the pending requests in order) applied to
 // `next`; each with the state it makes (the last one's is `next`).
 std::vector<StoneSimulation::Applied> StoneSimulation::apply_changes(bool auto_reset,
-                                                                     RigidBodyState& next) const {
+                                                                     RigidBodyState& next,
+                                                                     std::size_t end) const {
   std::vector<Applied> applied;
   if (auto_reset) {
     next = checked_.initial_state;
     applied.push_back({EventReason::auto_reset, next, {}});
   }
-  for (const Change& change : pending_) {
-    if (change.on_board()) continue;  // apply_board_changes
+  for (std::size_t k = 0; k < std::min(end, pending_.size()); ++k) {
+    const Change& change = pending_[k];
+    if (!change.initial_stone()) continue;  // apply_board_changes
     if (change.replaces_state()) {
       next = change.state;
     } else {
@@ -717,9 +951,15 @@ bool StoneSimulation::step_world(UpdateResult& result, UpdateBudget& budget) {
   }
   std::vector<SegmentEvent> events;
   for (const WorldEvent& e : world_events_) events.push_back(segment_event(e));
-  // The changes due at this step, in order, as in step().
-  RigidBodyState next = held_ ? state_ : world.state(0);
-  const std::vector<Applied> applied = apply_changes(auto_reset, next);
+  // The initial stone's changes due at this step, in order, as in step(), up to its removal
+  // (the rest, and all of them while it is removed, apply one by one with the board changes).
+  std::size_t batch_end = 0;
+  if (!initial_removed_) {
+    while (batch_end < pending_.size() && !removes_initial(pending_[batch_end])) ++batch_end;
+  }
+  RigidBodyState next = initial_removed_ ? state_ : held_ ? state_ : world.state(initial_id_);
+  const std::vector<Applied> applied =
+      initial_removed_ ? std::vector<Applied>{} : apply_changes(auto_reset, next, batch_end);
   if (!applied.empty()) {
     // One event per change, each with the state it makes; the World gets the last.
     std::vector<SegmentEvent> commands;
@@ -738,7 +978,7 @@ bool StoneSimulation::step_world(UpdateResult& result, UpdateBudget& budget) {
       reset_world(next, t_s);
       world.advance_to(t_s, world_events_);
     } else {
-      world.set_state(0, next, t_s, world_events_);  // a resting stone wakes first
+      world.set_state(initial_id_, next, t_s, world_events_);  // a resting stone wakes first
     }
     std::size_t i = 0;
     for (; i < world_events_.size() && world_events_[i].kind == WorldEventKind::wake; ++i) {
@@ -747,12 +987,12 @@ bool StoneSimulation::step_world(UpdateResult& result, UpdateBudget& budget) {
     for (SegmentEvent& command : commands) events.push_back(std::move(command));
     for (; i < world_events_.size(); ++i) events.push_back(segment_event(world_events_[i]));
   }
-  apply_board_changes(t_s, next_ns, events);
+  apply_board_changes(t_s, next_ns, batch_end, events);
   const bool moved = !events.empty() || !world.all_resting();
   clock_.step();
   pending_.clear();
   commit_events(events, result);
-  state_ = world.state(0);
+  if (!initial_removed_) state_ = world.state(initial_id_);
   // Resting since before this step: the outputs already show this very state.
   if (moved) output_stale_ = true;
   return true;

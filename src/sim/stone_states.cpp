@@ -19,7 +19,8 @@ std::vector<StoneStateEntry> stone_states(const StoneSimulation& sim) {
   e.mass_kg = stone.mass_properties.mass();
   e.output = sim.output();
   e.resting = sim.resting();
-  std::vector<StoneStateEntry> entries{e};
+  std::vector<StoneStateEntry> entries;
+  if (sim.initial_present()) entries.push_back(e);  // not after ~remove or ~clear
   // The placed stones, from the World (a World exists whenever there are some).
   for (const PlacedStone& p : sim.placed_stones()) {
     const World& w = *sim.world();

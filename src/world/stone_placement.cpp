@@ -20,11 +20,25 @@ constexpr double kMarginM = 1e-12;
 // A resting stone is "flat" when its axis is this close to vertical (|b_z| >= 1 - this).
 constexpr double kFlatTolerance = 1e-12;
 
+void check_point(const World& world, GoPoint point) {
+  if (!is_on_grid(point)) {
+    throw InvalidArgument("point", "point (column " + std::to_string(point.column) + ", row " +
+                                       std::to_string(point.row) + ") is off the 19 x 19 grid " +
+                                       "(columns and rows 0 .. 18, A1 .. T19)");
+  }
+  if (!world.config().board_enabled) {
+    throw InvalidArgument("board",
+                          "stones are placed at Go points only on a board (the world "
+                          "has none)");
+  }
+  (void)go_point_world(world.config().board, point);  // throws "board" unless 19 lines
+}
+
 struct Disc {
   Eigen::Vector2d centre;
-  double radius;  // the stone's half width
-  bool movable;   // flat and resting on the top face
-  StoneId id;
+  double radius;     // the stone's half width
+  bool movable;      // flat and resting on the top face
+  std::size_t from;  // its index in the planner's stones
 };
 
 struct Layout {
@@ -39,17 +53,7 @@ void check_request(const World& world, StoneColor color, GoPoint point, double t
     throw InvalidArgument("color", "color must be black or white, got the value " +
                                        std::to_string(static_cast<int>(color)));
   }
-  if (!is_on_grid(point)) {
-    throw InvalidArgument("point", "point (column " + std::to_string(point.column) + ", row " +
-                                       std::to_string(point.row) + ") is off the 19 x 19 grid " +
-                                       "(columns and rows 0 .. 18, A1 .. T19)");
-  }
-  if (!world.config().board_enabled) {
-    throw InvalidArgument("board",
-                          "stones are placed at Go points only on a board (the world "
-                          "has none)");
-  }
-  (void)go_point_world(world.config().board, point);  // throws "board" unless 19 lines
+  check_point(world, point);
   require_finite("time", t_s);
   if (t_s < world.time()) {
     throw InvalidArgument("time", "placement time " + format_value(t_s) +
@@ -77,17 +81,17 @@ bool is_flat_on_face(const World& world, std::size_t index) {
   return c.feature.kind == BoardFeatureKind::top_face;
 }
 
-Layout layout_around(const World& world, std::size_t body, GoPoint point) {
+Layout layout_around(const World& world, std::size_t body, GoPoint point,
+                     const std::vector<PlanStone>& stones) {
   Layout l;
   l.point = go_point_world(world.config().board, point).head<2>();
   l.radius = world.body_model(body).lens().half_width();
   l.z_centre = flat_on_face(world, body, l.point, 0.0).position_world.z();
-  for (std::size_t i = 0; i < world.stone_count(); ++i) {
-    const RigidBodyState& s = world.state(i);
-    const double r = world.body_model(world.body_of(i)).lens().half_width();
+  for (std::size_t i = 0; i < stones.size(); ++i) {
+    const PlanStone& s = stones[i];
     // Only stones whose bounding ball reaches the new stone's bounding ball's height band.
-    if (std::abs(s.position_world.z() - l.z_centre) > r + l.radius) continue;
-    l.discs.push_back(Disc{s.position_world.head<2>(), r, is_flat_on_face(world, i), world.id(i)});
+    if (std::abs(s.z_m - l.z_centre) > s.half_width_m + l.radius) continue;
+    l.discs.push_back(Disc{s.centre_xy, s.half_width_m, s.movable, i});
   }
   return l;
 }
@@ -184,17 +188,27 @@ int relax(std::vector<Eigen::Vector2d>& centres, std::vector<double>& radii,
 
 }  // namespace
 
-PlacementResult set_down_stone(World& world, StoneColor color, GoPoint point, double t_s,
-                               std::vector<WorldEvent>& events, const SetDownOptions& options) {
-  check_request(world, color, point, t_s);
+std::vector<PlanStone> plan_stones(const World& world) {
+  std::vector<PlanStone> out;
+  out.reserve(world.stone_count());
+  for (std::size_t i = 0; i < world.stone_count(); ++i) {
+    const RigidBodyState& s = world.state(i);
+    out.push_back(PlanStone{world.id(i), s.position_world.head<2>(), s.position_world.z(),
+                            world.body_model(world.body_of(i)).lens().half_width(),
+                            is_flat_on_face(world, i)});
+  }
+  return out;
+}
+
+SetDownPlan plan_set_down(const World& world, std::size_t body, GoPoint point,
+                          const std::vector<PlanStone>& stones, const SetDownOptions& options) {
+  check_point(world, point);
   if (options.max_sweeps < 1) {
     throw InvalidArgument(
         "max_sweeps", "max_sweeps must be at least 1, got " + std::to_string(options.max_sweeps));
   }
-  const std::size_t body = world.color_body(color);
-  if (t_s > world.time()) world.advance_to(t_s, events);
-  const Layout l = layout_around(world, body, point);
-  PlacementResult result;
+  const Layout l = layout_around(world, body, point, stones);
+  SetDownPlan plan;
   Eigen::Vector2d xy = l.point;
   if (const std::optional<Eigen::Vector2d> free = nearest_free(world, l)) {
     xy = *free;
@@ -223,18 +237,52 @@ PlacementResult set_down_stone(World& world, StoneColor color, GoPoint point, do
                                            "off the board's top face");
       }
     }
-    result.nudged = true;
-    result.sweeps = sweeps;
+    plan.nudged = true;
+    plan.sweeps = sweeps;
     xy = centres[0];
     for (std::size_t k = 0; k < l.discs.size(); ++k) {
       if (centres[k + 1] == l.discs[k].centre) continue;
-      world.move_resting_stone(l.discs[k].id, centres[k + 1], t_s, events);
-      result.moved.push_back(MovedStone{l.discs[k].id, world.state(l.discs[k].id),
-                                        (centres[k + 1] - l.discs[k].centre).norm()});
+      plan.moves.emplace_back(l.discs[k].from, centres[k + 1]);
     }
   }
-  result.state = flat_on_face(world, body, xy, 0.0);
-  result.offset_m = (xy - l.point).norm();
+  plan.xy = xy;
+  plan.offset_m = (xy - l.point).norm();
+  plan.stone = PlanStone{StoneId{}, xy, l.z_centre, l.radius, true};
+  return plan;
+}
+
+void apply_plan(std::vector<PlanStone>& stones, const SetDownPlan& plan) {
+  for (const auto& [index, centre] : plan.moves) stones.at(index).centre_xy = centre;
+  stones.push_back(plan.stone);
+}
+
+PlacementResult set_down_stone(World& world, StoneColor color, GoPoint point, double t_s,
+                               std::vector<WorldEvent>& events, const SetDownOptions& options) {
+  check_request(world, color, point, t_s);
+  if (t_s > world.time() && !world.all_resting()) {
+    // The stones that move would be elsewhere at t_s: the plan below would be of the wrong
+    // layout, and planning at t_s means advancing first (a change before the checks end).
+    throw InvalidArgument("time", "placement time " + format_value(t_s) +
+                                      " s is after the world's time " + format_value(world.time()) +
+                                      " s while stones move: advance the world to it first");
+  }
+  const std::size_t body = world.color_body(color);
+  const std::vector<PlanStone> stones = plan_stones(world);
+  const SetDownPlan plan = plan_set_down(world, body, point, stones, options);
+  // Checked: from here on nothing refuses. All at rest (or t_s is now), so the advance moves
+  // nothing and the plan holds at t_s.
+  if (t_s > world.time()) world.advance_to(t_s, events);
+  PlacementResult result;
+  result.nudged = plan.nudged;
+  result.sweeps = plan.sweeps;
+  result.offset_m = plan.offset_m;
+  for (const auto& [index, centre] : plan.moves) {
+    const StoneId id = stones[index].id;
+    world.move_resting_stone(id, centre, t_s, events);
+    result.moved.push_back(
+        MovedStone{id, world.state(id), (centre - stones[index].centre_xy).norm()});
+  }
+  result.state = flat_on_face(world, body, plan.xy, 0.0);
   result.id = world.add_stone(body, result.state, t_s, events);
   return result;
 }

@@ -15,7 +15,9 @@ long as the following lines need it, until the next `roslaunch` line stops it wi
 - `rosservice call /stone/...`: exit 0, `success: True`, and one second later the latest
   segment on /stone/events is still the one this call started (the scene does not undo it; for
   `place`, or the `rest` of the stone it named, which a set-down stone makes at once; for
-  `place`, `remove` and `clear` among the segments of placed stones, not the node's own);
+  `place`, `remove` and `clear` among the segments of placed stones, not the node's own); a
+  `set_state` or `set_angular_velocity` naming a placed stone has started a segment of that
+  stone (the physics goes on from it: a lifted stone falls);
   the simulation controls instead by what they do to the stone's /tf stamps: after `pause` none
   comes, after `step "ticks: N"` (`success: True`) exactly one more, N * dt later, and after
   `unpause` they go on, from a `time_jump` event with detail `unpaused`;
@@ -229,12 +231,22 @@ class ReadmeCommandsTest(unittest.TestCase):
         service = argv[2]
         self.assertTrue(service.startswith(NODE + "/"), self.where(line))
         reason = service[len(NODE) + 1:]
+        seen = len(self.events)
         output = self.finish(line)
         self.assertIn("success: True", output, "%s:\n%s" % (self.where(line), output))
         # The change starts a segment named after it, and nothing undoes it a second later.
         time.sleep(1.0)
         self.assertTrue(self.events, "%s: no /stone/events" % self.where(line))
         latest = self.events[-1]
+        request = yaml.safe_load(argv[3]) if len(argv) > 3 else None
+        named = request.get("name") if isinstance(request, dict) else None
+        if reason in ("set_state", "set_angular_velocity") and named:
+            # A named stone on the board: the change starts a segment of that stone, which the
+            # physics then goes on from (a lifted stone falls, a spinning one slows).
+            mine = [e.reason for e in self.events[seen:] if e.stone == named]
+            self.assertIn(reason, mine, "%s: no `%s` segment of %s: %s"
+                          % (self.where(line), reason, named, mine))
+            return
         if reason in ("place", "remove", "clear"):
             # Placed stones: the node's own stone (named after its frame, `stone`) may still be
             # settling from its toss; its segments are not the call's.

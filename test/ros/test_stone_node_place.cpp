@@ -2,7 +2,8 @@
 // stone, white_stone, rests on D16). Stones set down at Go points read back from ~stones with
 // their names, colours and points, lying on the board's top face at the intersection's x and y
 // (the board's pitch, 22 mm across and 23.7 mm along, from the config's board size); their tf
-// frames found by a tf2 listener, also once they rest; removal by name and by point; clear.
+// frames found by a tf2 listener, also once they rest; removal by name and by point; clear (the
+// initial stone too, back with ~reset); ~set_state and ~set_angular_velocity by name.
 #include <gtest/gtest.h>
 #include <std_srvs/Trigger.h>
 #include <tf2_ros/transform_listener.h>
@@ -13,6 +14,8 @@
 #include "support/node_observer.h"
 #include "virtual_go/PlaceStone.h"
 #include "virtual_go/RemoveStone.h"
+#include "virtual_go/SetAngularVelocity.h"
+#include "virtual_go/SetState.h"
 #include "virtual_go/StoneStates.h"
 
 using vgtest::NodeObserver;
@@ -106,8 +109,8 @@ TEST(StoneNodePlace, PlaceRemoveAndClearShowOnStonesAndTf) {
   std_srvs::Trigger clear;
   ASSERT_TRUE(o.call("clear", clear));
   ASSERT_TRUE(clear.response.success) << clear.response.message;
-  ASSERT_TRUE(o.wait_until(
-      [&] { return stones->name.size() == 1 && stones->name[0] == "white_stone"; }, 10.0));
+  // Every stone goes, the initial one too (a game replayed onto the board has no other stone).
+  ASSERT_TRUE(o.wait_until([&] { return stones->name.empty(); }, 10.0));
   std::size_t placed = 0, removed = 0, cleared = 0;
   for (const virtual_go::StoneEvent& e : o.events) {
     placed += e.reason == "place";
@@ -116,9 +119,75 @@ TEST(StoneNodePlace, PlaceRemoveAndClearShowOnStonesAndTf) {
   }
   EXPECT_EQ(placed, 3u);
   EXPECT_EQ(removed, 1u);
-  EXPECT_EQ(cleared, 2u);
+  EXPECT_EQ(cleared, 3u);
   virtual_go::RemoveStone gone;
   gone.request.name = "black_1";
   ASSERT_TRUE(o.call("remove", gone));
   EXPECT_FALSE(gone.response.success);
+  // The removed initial stone: requests for it say so; ~reset puts it back.
+  virtual_go::SetState teleport;
+  teleport.request.pose.orientation.w = 1.0;
+  teleport.request.pose.position.z = 0.1;
+  ASSERT_TRUE(o.call("set_state", teleport));
+  EXPECT_FALSE(teleport.response.success);
+  EXPECT_NE(teleport.response.message.find("'white_stone' is removed"), std::string::npos)
+      << teleport.response.message;
+  std_srvs::Trigger reset;
+  ASSERT_TRUE(o.call("reset", reset));
+  ASSERT_TRUE(reset.response.success) << reset.response.message;
+  ASSERT_TRUE(o.wait_until(
+      [&] { return stones->name.size() == 1 && stones->name[0] == "white_stone"; }, 10.0));
+}
+
+// ~set_state and ~set_angular_velocity of a placed stone by its name; an unknown name refused
+// naming it and the stones there are.
+TEST(StoneNodePlace, NamedRequestsMoveThatStone) {
+  NodeObserver o;
+  ros::NodeHandle nh;
+  std::optional<virtual_go::StoneStates> stones;
+  ros::Subscriber sub = nh.subscribe<virtual_go::StoneStates>(
+      "/stone/stones", 10, [&](const virtual_go::StoneStates::ConstPtr& m) { stones = *m; });
+  virtual_go::PlaceStone c3;
+  c3.request.point = "C3";
+  c3.request.color = "black";
+  ASSERT_TRUE(o.call("place", c3));
+  ASSERT_TRUE(c3.response.success) << c3.response.message;
+  const std::string name = c3.response.name;
+  ASSERT_TRUE(o.wait_until([&] {
+    const auto k = stones ? index_of(*stones, name) : std::nullopt;
+    return k && stones->resting[*k];
+  }));
+  const geometry_msgs::Pose rest = stones->pose[*index_of(*stones, name)];
+
+  virtual_go::SetState lift;
+  lift.request.name = name;
+  lift.request.pose = rest;
+  lift.request.pose.position.z += 0.02;
+  ASSERT_TRUE(o.call("set_state", lift));
+  ASSERT_TRUE(lift.response.success) << lift.response.message;
+  const auto named = [&](const std::string& reason) -> const virtual_go::StoneEvent* {
+    for (const virtual_go::StoneEvent& e : o.events) {
+      if (e.stone == name && e.reason == reason) return &e;
+    }
+    return nullptr;
+  };
+  ASSERT_TRUE(o.wait_until([&] { return named("set_state") && named("impact"); }));
+  EXPECT_EQ(named("set_state")->pose.position.z, rest.position.z + 0.02);
+  EXPECT_EQ(named("set_state")->pose.position.x, rest.position.x);
+
+  virtual_go::SetAngularVelocity spin;
+  spin.request.name = name;
+  spin.request.angular_velocity.z = 3.0;
+  ASSERT_TRUE(o.call("set_angular_velocity", spin));
+  ASSERT_TRUE(spin.response.success) << spin.response.message;
+  ASSERT_TRUE(o.wait_until([&] { return named("set_angular_velocity") != nullptr; }));
+
+  virtual_go::SetState unknown = lift;
+  unknown.request.name = "black_99";
+  ASSERT_TRUE(o.call("set_state", unknown));
+  EXPECT_FALSE(unknown.response.success);
+  EXPECT_NE(unknown.response.message.find("'black_99' is no stone"), std::string::npos)
+      << unknown.response.message;
+  EXPECT_NE(unknown.response.message.find("white_stone, " + name), std::string::npos)
+      << unknown.response.message;
 }

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -252,6 +253,89 @@ TEST(StonePlacement, BadRequestsChangeNothing) {
   EXPECT_EQ(field_of([&] { vg::set_down_stone(free_world, StoneColor::black, d4, 0.0, events); }),
             "board");
   EXPECT_EQ(free_world.stone_count(), 0u);
+}
+
+// Everything a World shows of itself, kept as bits: time, ids, bodies, each stone's state and
+// mode, the work counter.
+struct WorldSnapshot {
+  std::vector<double> numbers;
+  std::vector<std::uint64_t> ids;
+  std::vector<int> modes;
+  std::size_t bodies = 0;
+  long work = 0;
+  explicit WorldSnapshot(const vg::World& w) : bodies(w.body_count()), work(w.counters().work()) {
+    numbers.push_back(w.time());
+    for (std::size_t i = 0; i < w.stone_count(); ++i) {
+      const vg::RigidBodyState& s = w.state(i);
+      for (const double* v :
+           {s.position_world.data(), s.velocity_world.data(), s.angular_momentum_world.data()}) {
+        numbers.insert(numbers.end(), v, v + 3);
+      }
+      numbers.insert(numbers.end(), s.orientation.coeffs().data(),
+                     s.orientation.coeffs().data() + 4);
+      ids.push_back(w.id(i).value);
+      modes.push_back(static_cast<int>(w.mode(i)));
+    }
+  }
+  bool operator==(const WorldSnapshot& o) const {
+    return numbers.size() == o.numbers.size() &&
+           std::memcmp(numbers.data(), o.numbers.data(), numbers.size() * sizeof(double)) == 0 &&
+           ids == o.ids && modes == o.modes && bodies == o.bodies && work == o.work;
+  }
+};
+
+// Set down at A1 again and again: each nudges the cluster outwards until a stone would leave
+// the top face. That refusal, asked at a later time, must leave the world bit for bit as it was
+// (no advance to the later time, no stone moved or added, no event).
+TEST(StonePlacement, NoRoomIsRefusedBeforeAnythingChanges) {
+  vg::World world = empty_world();
+  std::vector<vg::WorldEvent> events;
+  const GoPoint a1 = vg::parse_gtp_point("A1");
+  std::string refusal;
+  int placed = 0;
+  for (; placed < 200 && refusal.empty(); ++placed) {
+    try {
+      (void)vg::set_down_stone(world, StoneColor::black, a1, world.time(), events);
+    } catch (const vg::InvalidArgument& e) {
+      EXPECT_EQ(e.field(), "point");
+      refusal = e.what();
+    }
+  }
+  ASSERT_FALSE(refusal.empty()) << "A1 never ran out of room in 200 set-downs";
+  EXPECT_NE(refusal.find("no room at A1"), std::string::npos) << refusal;
+  ASSERT_TRUE(world.all_resting());
+  const WorldSnapshot before(world);
+  const std::size_t n_events = events.size();
+  const double later = world.time() + 0.25;
+  EXPECT_EQ(field_of([&] { vg::set_down_stone(world, StoneColor::black, a1, later, events); }),
+            "point");
+  EXPECT_TRUE(WorldSnapshot(world) == before);
+  EXPECT_EQ(events.size(), n_events);
+  // The planner, asked alone, refuses the same and changes nothing either.
+  EXPECT_EQ(field_of([&] {
+              vg::plan_set_down(world, world.color_body(StoneColor::black), a1,
+                                vg::plan_stones(world));
+            }),
+            "point");
+  EXPECT_TRUE(WorldSnapshot(world) == before);
+}
+
+// A later placement time while a stone flies would plan the wrong layout (the flight moves on):
+// refused ("time") before the advance, nothing changed.
+TEST(StonePlacement, LaterTimeWhileAStoneMovesIsRefusedUnchanged) {
+  vg::World world = empty_world();
+  std::vector<vg::WorldEvent> events;
+  (void)vg::drop_stone(world, StoneColor::white, vg::parse_gtp_point("Q16"), 0.05, 0.0, events);
+  (void)world.color_body(StoneColor::black);
+  ASSERT_FALSE(world.all_resting());
+  const WorldSnapshot before(world);
+  const std::size_t n_events = events.size();
+  EXPECT_EQ(field_of([&] {
+              vg::set_down_stone(world, StoneColor::black, vg::parse_gtp_point("D4"), 0.01, events);
+            }),
+            "time");
+  EXPECT_TRUE(WorldSnapshot(world) == before);
+  EXPECT_EQ(events.size(), n_events);
 }
 
 }  // namespace

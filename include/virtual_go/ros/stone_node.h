@@ -81,9 +81,9 @@ class StoneNode {
   ros::ServiceServer remove_srv_;
   ros::ServiceServer clear_srv_;
   // The simulated time each placed stone's transform last went out (resting ones are re-sent
-  // every kRestingTfPeriodNs, not every tick).
+  // every kRestingTfPeriodNs, not every tick), in placement order (-1: not yet).
   static constexpr std::int64_t kRestingTfPeriodNs = 1000000000;
-  std::map<std::string, std::int64_t> tf_sent_ns_;
+  std::vector<std::pair<StoneId, std::int64_t>> tf_sent_ns_;
   ros::ServiceServer pause_srv_;
   ros::ServiceServer unpause_srv_;
   ros::ServiceServer step_srv_;

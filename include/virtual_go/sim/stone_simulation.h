@@ -109,14 +109,22 @@ class StoneSimulation {
   // reported. A step that fails is announced by a `held` event (detail: the cause) and its
   // requests are not applied; the next request's answer names it.
   std::string reset();
-  // frame: "" / "world" / world frame id, or "stone" / stone frame id. For rigid_body this sets
-  // L = I w at the instant it takes effect. Refused (RequestRefused) while the state is held:
-  // it would change a state that cannot move.
-  std::string set_angular_velocity(const Eigen::Vector3d& omega, const std::string& frame);
+  // `name`: the stone addressed, "" or stone_name(0) for the initial stone, else a name ~place
+  // answered (also one still waiting to be placed). InvalidArgument ("name") for a name no
+  // stone has, or one removed (also by a ~remove or ~clear waiting for the step): the message
+  // quotes it and lists the stones there are; nothing changes.
+  // frame: "" / "world" / world frame id, or "stone" / the stone's frame id (its name) for its
+  // body frame. For rigid_body this sets L = I w at the instant it takes effect. Refused
+  // (RequestRefused) while the state is held: it would change a state that cannot move.
+  std::string set_angular_velocity(const Eigen::Vector3d& omega, const std::string& frame,
+                                   const std::string& name = "");
+  // Limits as for the initial stone; a placed stone's state is checked with its own body (its
+  // colour's lens against the board).
   std::string set_state(const Eigen::Vector3d& position_world,
                         const Eigen::Vector4d& orientation_xyzw,
                         const Eigen::Vector3d& velocity_world,
-                        const Eigen::Vector3d& angular_velocity_world);
+                        const Eigen::Vector3d& angular_velocity_world,
+                        const std::string& name = "");
 
   // Stones on the board (~board/enabled only; without it RequestRefused). The initial stone,
   // `stone_name(0)`, is the one the requests above address; ~place adds stones named
@@ -129,16 +137,22 @@ class StoneSimulation {
   // Returns the new name; `answer` gets the answer for the caller.
   std::string place(const PlaceRequest& request, std::string& answer);
   // A name ~place answered, or a Go point: the stone whose nearest point it is (one waiting to be
-  // placed there first, else the one nearest that intersection). InvalidArgument ("name") for
-  // `stone_name(0)` (it is not removable), an unknown name or an empty point. Returns the
-  // removed stone's name; `answer` as above.
+  // placed there first, else the one nearest that intersection). The initial stone is removed
+  // like any other (a game replayed onto the board must not have a stone the game lacks);
+  // ~reset puts it back at its initial state. InvalidArgument ("name") for an unknown or removed
+  // name or an empty point. Returns the removed stone's name; `answer` as above.
   std::string remove(const std::string& name_or_point, std::string& answer);
-  // The placed stone at a Go point, as remove() finds it: one waiting to be placed there (the
-  // latest), else the placed stone nearest the intersection among those whose nearest point it
-  // is; "" when there is none (or no board). The initial stone is not among them.
-  std::string placed_stone_at(GoPoint point) const;
-  // Removes every placed stone at the next step (the initial stone stays).
+  // The stone at a Go point, as remove() finds it: one waiting to be placed there (the latest),
+  // else the stone nearest the intersection among those whose nearest point it is and that are
+  // still there once the waiting requests apply (the initial stone too); "" when there is none
+  // (or no board).
+  std::string stone_at(GoPoint point) const;
+  // Removes every stone, the initial one too, at the next step (a clear event each).
   std::string clear();
+  // The initial stone is in the simulation (not removed by ~remove or ~clear since the last
+  // ~reset; always without the board). While it is not, state() and output() keep its last
+  // state, nothing of it is published, and it never rests or auto-resets.
+  bool initial_present() const { return !initial_removed_; }
   // The placed stones in the World now, in placement order.
   const std::vector<PlacedStone>& placed_stones() const { return placed_; }
 
@@ -183,7 +197,7 @@ class StoneSimulation {
   // While held(): the cause of the failed step.
   const std::string& failure() const { return failure_; }
   // With the board: the World holds the stone at rest (without the board it never rests).
-  bool resting() const { return world_ && world_->is_resting(0); }
+  bool resting() const { return world_ && !initial_removed_ && world_->is_resting(initial_id_); }
   // With the board: the World (its counters show the work done), else nullptr.
   const World* world() const { return world_ ? &*world_ : nullptr; }
   // Simulated time (ns) of the World's time 0.
@@ -210,17 +224,40 @@ class StoneSimulation {
       return reason == EventReason::place || reason == EventReason::remove ||
              reason == EventReason::clear;
     }
+    // set_state, set_angular_velocity: `name` empty for the initial stone, else a placed one's.
+    bool initial_stone() const { return !on_board() && name.empty(); }
     bool replaces_state() const {
-      return reason != EventReason::set_angular_velocity && !on_board();
+      return reason != EventReason::set_angular_velocity && initial_stone();
     }
   };
   // ~place / ~remove / ~clear changes due at this step applied to the World at t_s, in order, with
   // their events (and the World's) appended.
-  void apply_board_changes(double t_s, std::int64_t stamp_ns, std::vector<SegmentEvent>& events);
+  // The initial stone's changes before batch_end were applied already (step_world); those
+  // after it apply here, one by one, in order with the rest.
+  void apply_board_changes(double t_s, std::int64_t stamp_ns, std::size_t batch_end,
+                           std::vector<SegmentEvent>& events);
+  // A ~remove of the initial stone or a ~clear.
+  bool removes_initial(const Change& change) const {
+    return change.reason == EventReason::clear ||
+           (change.reason == EventReason::remove && change.name == stone_name(0));
+  }
   // The World restarted at t_s with the initial stone in `state` and every placed stone where it
   // is (they get new ids).
   void reset_world(const RigidBodyState& state, double t_s);
   void require_board(const std::string& request) const;
+  // The name a request addresses: "" for the initial stone, or a placed stone's (one waiting to
+  // be placed too), as the board will be after the requests waiting. Throws InvalidArgument
+  // ("name") quoting an unknown or removed one and listing the stones there are.
+  std::string request_target(const std::string& name) const;
+  // The names there will be once the pending requests apply, in ~stones order.
+  std::vector<std::string> names_after_pending() const;
+  // reset, set_state or set_angular_velocity of one stone applied to the World at t_s on its
+  // own (a reset of the removed initial stone adds it again), with its events.
+  void apply_state_change(const Change& change, double t_s, std::int64_t stamp_ns,
+                          std::vector<SegmentEvent>& events);
+  // Throws InvalidArgument ("point") when a stone of `body` set down at `point` will find no room
+  // on the board as the pending requests leave it (stones that move in that step aside).
+  void check_room(std::size_t body, GoPoint point);
   // The name of the stone with this World id ("" if none).
   std::string name_of(StoneId id) const;
   // The motion model of a World stone's body, for its outputs.
@@ -242,7 +279,9 @@ class StoneSimulation {
     RigidBodyState state;
     StateOutput output;
   };
-  std::vector<Applied> apply_changes(bool auto_reset, RigidBodyState& next) const;
+  // The initial stone's changes among pending_[0, end).
+  std::vector<Applied> apply_changes(bool auto_reset, RigidBodyState& next,
+                                     std::size_t end = static_cast<std::size_t>(-1)) const;
   // With the board: the World restarted with state_ at stamp_ns (its new epoch), and its events
   // at that instant (a stone placed on the board comes to rest) reported.
   void restart_world(std::int64_t stamp_ns, UpdateResult& result);
@@ -295,6 +334,7 @@ class StoneSimulation {
   std::int64_t rest_since_ns_ = -1;       // first whole ns at rest (the rest event's, rounded up)
   std::vector<WorldEvent> world_events_;  // the events of the step in progress
   StoneId initial_id_;                    // the initial stone's World id
+  bool initial_removed_ = false;          // by ~remove or ~clear, until ~reset
   std::vector<PlacedStone> placed_;
   std::vector<std::size_t> body_of_placed_;  // the World body of each placed_ entry
   int next_number_[2] = {1, 1};              // the next ~place number per colour (black, white)

@@ -56,13 +56,44 @@ struct SetDownOptions {
 };
 
 // Sets a stone of `color` down at `point` at t_s (>= world.time(); the world is advanced to t_s
-// first, its events appended, then the new stone's rest event). Throws InvalidArgument before
-// anything changes for a bad colour ("color"), a point off the grid ("point"), a world without
-// a board or not of 19 lines ("board"), a bad time ("time"). When there is no room (a nudge
-// that would push a stone off the top face, or no convergence in max_sweeps) it throws
-// InvalidArgument ("point") after the advance to t_s, with no stone added or moved.
+// first, its events appended, then the new stone's rest event). Everything is checked before
+// anything changes: InvalidArgument for a bad colour ("color"), a point off the grid ("point"),
+// a world without a board or not of 19 lines ("board"), a bad time ("time"; also a t_s later
+// than world.time() while a stone moves: the layout solved is the one at t_s, so advance the
+// world there first), no room ("point": a nudge that would push a stone off the top face, or
+// no convergence in max_sweeps). Only the colour's body may have been made (World::color_body).
 PlacementResult set_down_stone(World& world, StoneColor color, GoPoint point, double t_s,
                                std::vector<WorldEvent>& events, const SetDownOptions& options = {});
+
+// A stone as the set-down planner sees it: a horizontal disc at a height.
+struct PlanStone {
+  StoneId id;  // in the world (a stone only planned: any value, unused by the planner)
+  Eigen::Vector2d centre_xy = Eigen::Vector2d::Zero();  // m, world
+  double z_m = 0.0;                                     // centre height, world
+  double half_width_m = 0.0;
+  bool movable = false;  // flat and resting on the top face: a nudge may push it
+};
+
+// What set_down_stone would do, found without changing anything.
+struct SetDownPlan {
+  Eigen::Vector2d xy = Eigen::Vector2d::Zero();  // the new stone's centre
+  double offset_m = 0.0;                         // from the intersection
+  bool nudged = false;
+  int sweeps = 0;
+  // Stones the nudge moves: their index in the planner's list and new centre.
+  std::vector<std::pair<std::size_t, Eigen::Vector2d>> moves;
+  PlanStone stone;  // the new stone (id unset)
+};
+
+// The world's stones as the planner sees them, in index order.
+std::vector<PlanStone> plan_stones(const World& world);
+// Plans a stone of `body` set down at `point` among `stones` (plan_stones of this world, or a
+// layout the caller expects it to have). Throws InvalidArgument as set_down_stone ("point",
+// "board", "max_sweeps"); changes nothing.
+SetDownPlan plan_set_down(const World& world, std::size_t body, GoPoint point,
+                          const std::vector<PlanStone>& stones, const SetDownOptions& options = {});
+// The planner's layout after the plan: the moves made, the new stone appended.
+void apply_plan(std::vector<PlanStone>& stones, const SetDownPlan& plan);
 
 // Drops a stone of `color` over `point` from drop_height_m (>= 0, finite: "drop_height") with a
 // twist (finite: "velocity", "angular_velocity"). The other errors as set_down_stone, before
