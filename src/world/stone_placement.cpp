@@ -299,7 +299,13 @@ PlacementResult drop_stone(World& world, StoneColor color, GoPoint point, double
   require_finite("velocity", velocity_world);
   require_finite("angular_velocity", angular_velocity_world);
   const std::size_t body = world.color_body(color);
-  const Eigen::Vector2d xy = go_point_world(world.config().board, point).head<2>();
+  // Aimed as a player aims: over the free spot nearest the intersection (exact, as set-down
+  // finds it; a stone is 22.2 mm wide on a 22 mm grid, so over the intersection itself it would
+  // land on its neighbour's rim). With no free spot within half a spacing (the point taken, or
+  // a nudge needed) it falls over the intersection onto whatever lies there: physics, not rules.
+  const Eigen::Vector2d xy =
+      nearest_free(world, layout_around(world, body, point, plan_stones(world)))
+          .value_or(go_point_world(world.config().board, point).head<2>());
   RigidBodyState s = flat_on_face(world, body, xy, drop_height_m);
   s.velocity_world = velocity_world;
   s = with_angular_velocity_world(world.body_model(body).setup().model, s, angular_velocity_world);

@@ -211,6 +211,37 @@ TEST(StonePlacement, ADroppedStoneBouncesVerticallyAndRestsAtItsPoint) {
   EXPECT_EQ(world.stone_count(), 2u);
 }
 
+// Dropped between two blacks set down on C4 and E4 (22.2 mm stones on a 22 mm grid): aimed at
+// the free spot, it falls and bounces straight down 2.97321 mm off the line (the closed form
+// sqrt(22.2^2 - 22^2) mm) and rests there touching neither neighbour. The world's stone contact is
+// off here, so only the aim keeps the lenses apart; over D4 itself it would overlap both by
+// 0.1 mm along the row.
+TEST(StonePlacement, ADroppedStoneAimsAtTheFreeSpotBesideItsNeighbours) {
+  vg::World world = empty_world();
+  ASSERT_FALSE(world.config().stone_contact);
+  std::vector<vg::WorldEvent> events;
+  (void)vg::set_down_stone(world, StoneColor::black, vg::parse_gtp_point("C4"), 0.0, events);
+  (void)vg::set_down_stone(world, StoneColor::black, vg::parse_gtp_point("E4"), 0.0, events);
+  const GoPoint d4 = vg::parse_gtp_point("D4");
+  const Vector3d p = vg::go_point_world(world.config().board, d4);
+  const vg::PlacementResult r = vg::drop_stone(world, StoneColor::black, d4, 0.01, 0.0, events);
+  const double between = std::sqrt(std::pow(2 * kBlackA, 2) - 0.022 * 0.022);
+  EXPECT_NEAR(r.state.position_world.x(), p.x(), 1e-12);
+  EXPECT_NEAR(std::abs(r.state.position_world.y() - p.y()), between, 1e-9);
+  double t = 0.0, gap = std::numeric_limits<double>::infinity();
+  while (!world.all_resting() && t < 5.0) {
+    world.advance_to(t += 1e-3, events);
+    gap = std::min(gap, smallest_gap(world));
+  }
+  ASSERT_TRUE(world.is_resting(r.id));
+  EXPECT_GE(gap, -1e-12);
+  const vg::RigidBodyState& s = world.state(r.id);
+  EXPECT_NEAR(s.position_world.x(), r.state.position_world.x(), 1e-12);
+  EXPECT_NEAR(s.position_world.y(), r.state.position_world.y(), 1e-12);
+  std::printf("[ dropped between C4 and E4 ] %.6g mm off D4, smallest gap %.3g m\n",
+              1e3 * (s.position_world - p).head<2>().norm(), gap);
+}
+
 TEST(StonePlacement, BadRequestsChangeNothing) {
   vg::World world = empty_world();
   std::vector<vg::WorldEvent> events;
