@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """A bag of a replayed game passes `bag_report --strict` (issue 16). rosbag records the node's
-topics, /tf and /tf_static while `sgf_replay` drops the first 15 moves of Debian kigo's
+topics, /tf and /tf_static while `sgf_replay` drops the first 40 moves of Debian kigo's
 Honinbo-51-5.sgf onto the board (--drop-height 0.02: each stone flies, lands, bounces and rests);
 bag_report --strict on the bag must exit 0. A copy with one resting stone's position moved by
 1 um in one ~stones message (written with rosbag's Python API) must fail, naming that stone.
@@ -24,7 +24,7 @@ from virtual_go.msg import StoneStates
 
 PKG = "virtual_go"
 NODE = "/stone"
-MOVES = 15
+MOVES = 40
 # Late timer ticks on a loaded machine show as gaps in ~odom, ~pose and the initial stone's /tf
 # (as in bag_record.test): about a tenth of the ~10 s recorded at 60 Hz.
 MAX_GAPS = "75"
@@ -95,7 +95,7 @@ class BagOfAGameTest(unittest.TestCase):
                 time.sleep(0.1)
             replay = subprocess.run(
                 ["rosrun", PKG, "sgf_replay", GAME, "--node", NODE, "--to-move", str(MOVES),
-                 "--interval", "0.25", "--drop-height", "0.02"],
+                 "--interval", "0.1", "--drop-height", "0.02"],
                 capture_output=True, text=True, timeout=120)
             self.assertEqual(replay.returncode, 0, replay.stderr)
             # Until every stone rests, then 1.5 s more: the resting stones' /tf, sent once per
