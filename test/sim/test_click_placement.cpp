@@ -10,27 +10,18 @@
 #include <string>
 #include <vector>
 
+#include "sim/sim_test_support.h"
 #include "virtual_go/sim/click_placement.h"
 #include "virtual_go/sim/stone_simulation.h"
 #include "virtual_go/sim/stone_states.h"
 
 namespace vg = virtual_go;
+using namespace simtest;
 
 namespace {
 
-constexpr std::int64_t kStart = 1700000000123456789;
-constexpr std::int64_t kMs = 1000000;
 constexpr double kSpacingX = 0.022;   // m, the default board's lines across
 constexpr double kSpacingY = 0.0237;  // m, along
-
-// The board scene; the initial stone falls onto K10 (tengen) and rests there.
-vg::StoneConfig board_scene() {
-  vg::StoneConfig c;
-  c.board_enabled = true;
-  c.auto_reset_period_s = 0.0;
-  c.auto_reset_after_rest_s = 0.0;
-  return c;
-}
 
 void run(vg::StoneSimulation& sim, std::int64_t& now, std::int64_t duration_ns) {
   const std::int64_t end = now + duration_ns;

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "sim/sim_test_support.h"
 #include "virtual_go/common/sim_time.h"
 #include "virtual_go/common/validation.h"
 #include "virtual_go/go/go_point.h"
@@ -18,21 +19,9 @@
 #include "virtual_go/sim/stone_states.h"
 
 namespace vg = virtual_go;
+using namespace simtest;
 
 namespace {
-
-constexpr std::int64_t kStart = 1700000000123456789;
-constexpr std::int64_t kMs = 1000000;
-constexpr double kG = 9.80665;
-
-// The initial stone falls onto K10 and rests there.
-vg::StoneConfig board_scene() {
-  vg::StoneConfig c;
-  c.board_enabled = true;
-  c.auto_reset_period_s = 0.0;
-  c.auto_reset_after_rest_s = 0.0;
-  return c;
-}
 
 void run(vg::StoneSimulation& sim, std::int64_t& now, std::int64_t duration_ns,
          std::vector<vg::SegmentEvent>& out) {
