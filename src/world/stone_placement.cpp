@@ -256,6 +256,34 @@ void apply_plan(std::vector<PlanStone>& stones, const SetDownPlan& plan) {
   stones.push_back(plan.stone);
 }
 
+namespace {
+
+// Advances to t_s and moves the stones a plan nudges; the result without the new stone.
+PlacementResult apply_moves(World& world, const std::vector<PlanStone>& stones,
+                            const SetDownPlan& plan, double t_s, std::vector<WorldEvent>& events) {
+  if (t_s > world.time()) world.advance_to(t_s, events);
+  PlacementResult result;
+  result.nudged = plan.nudged;
+  result.sweeps = plan.sweeps;
+  result.offset_m = plan.offset_m;
+  for (const auto& [index, centre] : plan.moves) {
+    const StoneId id = stones[index].id;
+    world.move_resting_stone(id, centre, t_s, events);
+    result.moved.push_back(
+        MovedStone{id, world.state(id), (centre - stones[index].centre_xy).norm()});
+  }
+  return result;
+}
+
+// A stone lies over the point already: its centre is nearer the intersection than half the
+// new stone's width (a player drops onto it, not beside it).
+bool point_taken(const Layout& l) {
+  return std::any_of(l.discs.begin(), l.discs.end(),
+                     [&](const Disc& d) { return (d.centre - l.point).norm() < l.radius; });
+}
+
+}  // namespace
+
 PlacementResult set_down_stone(World& world, StoneColor color, GoPoint point, double t_s,
                                std::vector<WorldEvent>& events, const SetDownOptions& options) {
   check_request(world, color, point, t_s);
@@ -271,17 +299,7 @@ PlacementResult set_down_stone(World& world, StoneColor color, GoPoint point, do
   const SetDownPlan plan = plan_set_down(world, body, point, stones, options);
   // Checked: from here on nothing refuses. All at rest (or t_s is now), so the advance moves
   // nothing and the plan holds at t_s.
-  if (t_s > world.time()) world.advance_to(t_s, events);
-  PlacementResult result;
-  result.nudged = plan.nudged;
-  result.sweeps = plan.sweeps;
-  result.offset_m = plan.offset_m;
-  for (const auto& [index, centre] : plan.moves) {
-    const StoneId id = stones[index].id;
-    world.move_resting_stone(id, centre, t_s, events);
-    result.moved.push_back(
-        MovedStone{id, world.state(id), (centre - stones[index].centre_xy).norm()});
-  }
+  PlacementResult result = apply_moves(world, stones, plan, t_s, events);
   result.state = flat_on_face(world, body, plan.xy, 0.0);
   result.id = world.add_stone(body, result.state, t_s, events);
   return result;
@@ -299,17 +317,31 @@ PlacementResult drop_stone(World& world, StoneColor color, GoPoint point, double
   require_finite("velocity", velocity_world);
   require_finite("angular_velocity", angular_velocity_world);
   const std::size_t body = world.color_body(color);
-  // Aimed as a player aims: over the free spot nearest the intersection (exact, as set-down
-  // finds it; a stone is 22.2 mm wide on a 22 mm grid, so over the intersection itself it would
-  // land on its neighbour's rim). With no free spot within half a spacing (the point taken, or
-  // a nudge needed) it falls over the intersection onto whatever lies there: physics, not rules.
-  const Eigen::Vector2d xy =
-      nearest_free(world, layout_around(world, body, point, plan_stones(world)))
-          .value_or(go_point_world(world.config().board, point).head<2>());
-  RigidBodyState s = flat_on_face(world, body, xy, drop_height_m);
+  // Aimed as a player aims: where set_down_stone would put it (a stone is 22.2 mm wide on a
+  // 22 mm grid, so over the intersection itself it would land on its neighbour's rim): the free
+  // spot nearest the intersection, else with the resting neighbours nudged apart. Over a point
+  // a stone already covers, or with no room, it falls over the intersection onto whatever lies
+  // there: physics, not rules.
+  const std::vector<PlanStone> stones = plan_stones(world);
+  const Layout l = layout_around(world, body, point, stones);
+  SetDownPlan plan;
+  plan.xy = l.point;
+  if (const std::optional<Eigen::Vector2d> free = nearest_free(world, l)) {
+    plan.xy = *free;
+    plan.offset_m = (*free - l.point).norm();
+  } else if (!point_taken(l) && (t_s == world.time() || world.all_resting())) {
+    try {
+      plan = plan_set_down(world, body, point, stones);
+    } catch (const InvalidArgument&) {
+      plan = SetDownPlan{};  // no room even with a nudge: over the intersection
+      plan.xy = l.point;
+    }
+  }
+  // Checked: from here on nothing refuses.
+  PlacementResult result = apply_moves(world, stones, plan, t_s, events);
+  RigidBodyState s = flat_on_face(world, body, plan.xy, drop_height_m);
   s.velocity_world = velocity_world;
   s = with_angular_velocity_world(world.body_model(body).setup().model, s, angular_velocity_world);
-  PlacementResult result;
   result.state = s;
   result.id = world.add_stone(body, s, t_s, events);
   return result;

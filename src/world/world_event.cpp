@@ -38,6 +38,7 @@ const std::vector<std::pair<WorldEventDetail, std::string>>& details() {
       {WorldEventDetail::settle, "settle"},
       {WorldEventDetail::wake, "wake"},
       {WorldEventDetail::stone_contact, "stone_contact"},
+      {WorldEventDetail::nudge, "nudge"},
   };
   return table;
 }

@@ -153,6 +153,15 @@ void World::move_resting_stone(StoneId id, const Eigen::Vector2d& position_xy_wo
   stones_.hot(i).state_time_s = t_s;
   if (broad_phase_.contains(i))
     broad_phase_.update(i, sphere_bounds(moved.position_world, body.lens().half_width()), false);
+  // Said, not silent: a recording must see the resting stone's new pose begin here.
+  WorldEvent e;
+  e.time_s = t_s;
+  e.stone = i;
+  e.id = id;
+  e.kind = WorldEventKind::rest;
+  e.detail = WorldEventDetail::nudge;
+  e.state = moved;
+  events.push_back(e);
 }
 
 std::optional<StoneColor> World::color(StoneId id) const {

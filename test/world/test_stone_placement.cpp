@@ -242,6 +242,41 @@ TEST(StonePlacement, ADroppedStoneAimsAtTheFreeSpotBesideItsNeighbours) {
               1e3 * (s.position_world - p).head<2>().norm(), gap);
 }
 
+// Dropped onto D4 between blacks on C4 and E4 and whites on D3 and D5: no free spot within half
+// a spacing (the blacks need it 2.97 mm off the row, the whites leave 1.65 mm), so the resting
+// neighbours are nudged apart as for a set-down, and it lands in the room made, touching none.
+TEST(StonePlacement, ADroppedStoneNudgesItsNeighboursWhenThereIsNoFreeSpot) {
+  vg::World world = empty_world();
+  std::vector<vg::WorldEvent> events;
+  for (const char* p : {"C4", "E4"})
+    (void)vg::set_down_stone(world, StoneColor::black, vg::parse_gtp_point(p), 0.0, events);
+  for (const char* p : {"D3", "D5"})
+    (void)vg::set_down_stone(world, StoneColor::white, vg::parse_gtp_point(p), 0.0, events);
+  const vg::PlacementResult r =
+      vg::drop_stone(world, StoneColor::black, vg::parse_gtp_point("D4"), 0.01, 0.0, events);
+  EXPECT_TRUE(r.nudged);
+  EXPECT_FALSE(r.moved.empty());
+  // Each move is said: a rest event (detail nudge) carrying the stone's new pose.
+  std::size_t nudge_events = 0;
+  for (const vg::WorldEvent& e : events) {
+    if (e.detail != vg::WorldEventDetail::nudge) continue;
+    ++nudge_events;
+    EXPECT_EQ(e.kind, vg::WorldEventKind::rest);
+    EXPECT_EQ(e.state.position_world, world.state(e.id).position_world);
+  }
+  EXPECT_EQ(nudge_events, r.moved.size());
+  double t = 0.0, gap = smallest_gap(world);
+  EXPECT_GE(gap, -1e-12);
+  while (!world.all_resting() && t < 5.0) {
+    world.advance_to(t += 1e-3, events);
+    gap = std::min(gap, smallest_gap(world));
+  }
+  ASSERT_TRUE(world.is_resting(r.id));
+  EXPECT_GE(gap, -1e-12);
+  std::printf("[ dropped into D4 between four ] %zu stones nudged, %.3g mm off D4, gap %.3g m\n",
+              r.moved.size(), 1e3 * r.offset_m, gap);
+}
+
 TEST(StonePlacement, BadRequestsChangeNothing) {
   vg::World world = empty_world();
   std::vector<vg::WorldEvent> events;

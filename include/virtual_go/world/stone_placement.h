@@ -96,10 +96,11 @@ SetDownPlan plan_set_down(const World& world, std::size_t body, GoPoint point,
 void apply_plan(std::vector<PlanStone>& stones, const SetDownPlan& plan);
 
 // Drops a stone of `color` over `point` from drop_height_m (>= 0, finite: "drop_height") with a
-// twist (finite: "velocity", "angular_velocity"): flat, over the free spot nearest the
-// intersection that set_down_stone would take without a nudge, or over the intersection itself
-// when there is none (the point taken: it lands on what lies there). The other errors as
-// set_down_stone, before anything changes.
+// twist (finite: "velocity", "angular_velocity"): flat, over the pose set_down_stone would take
+// (the free spot nearest the intersection, else the resting neighbours nudged apart, as in
+// `moved`; a nudge only when t_s is the world's time or all rest), or over the intersection
+// itself when a stone covers it already or there is no room (it lands on what lies there). The
+// other errors as set_down_stone, before anything changes.
 PlacementResult drop_stone(World& world, StoneColor color, GoPoint point, double drop_height_m,
                            double t_s, std::vector<WorldEvent>& events,
                            const Eigen::Vector3d& velocity_world = Eigen::Vector3d::Zero(),

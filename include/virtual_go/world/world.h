@@ -15,10 +15,10 @@
 // pipeline of named stages repeated until t: (1) board search: each flight's board contact is
 // known up to t; (2) pair search: every awake stone against every other stone within the reach
 // its energy allows (world/broad_phase's grid: awake-awake and awake-resting pairs only, never
-// two resting stones; resting stones enter it when they come to rest): a flight against a flight or a resting
-// stone by the exact pair time of impact (closed form both), any pair with a stone in contact
-// (sliding, fallback, island) conservatively (the gap can close at most at the sum of the point
-// speeds their energies allow); (3) step: every awake stone to the earliest of the first pair
+// two resting stones; resting stones enter it when they come to rest): a flight against a flight or
+// a resting stone by the exact pair time of impact (closed form both), any pair with a stone in
+// contact (sliding, fallback, island) conservatively (the gap can close at most at the sum of the
+// point speeds their energies allow); (3) step: every awake stone to the earliest of the first pair
 // contact, the first board contact of a flight near another stone, the conservative safe time
 // and t (the per-stone models, as before); (4) resolve there: a pair impact (Stronge, the
 // config's stone_material; both stones get an `impact` naming the other; a resting stone hit
@@ -162,7 +162,8 @@ class World {
                  std::vector<WorldEvent>& events);
   // Moves a resting stone lying on the board's top face horizontally to (x, y) without waking
   // it: it stays resting, its orientation and height unchanged, its velocities zero (the
-  // placement's nudge, world/stone_placement.h). Advances to t_s first. Throws InvalidArgument
+  // placement's nudge, world/stone_placement.h). Advances to t_s first, then appends a `rest`
+  // event (detail nudge) with the new pose, so a recording sees it. Throws InvalidArgument
   // before anything changes: "stone" (unknown, or not resting), "position" (not finite, or its
   // lowest point would leave the top face), "time".
   void move_resting_stone(StoneId id, const Eigen::Vector2d& position_xy_world, double t_s,

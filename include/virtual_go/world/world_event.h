@@ -56,6 +56,8 @@ enum class WorldEventDetail {
   wake,
   stone_contact,  // a stone-stone contact taken by the island fallback (sustained, or a stone
                   // in contact touching another): the stone is a member of an island
+  nudge,  // a resting stone moved along the top face by a placement (World::move_resting_stone):
+          // kind rest, it rests at the new pose from this instant
 };
 
 struct WorldEvent {
