@@ -7,6 +7,7 @@ add_library(virtual_go_bag_report
   src/bag/stamp_statistics.cpp
   src/bag/physics_check.cpp
   src/bag/stone_overlap.cpp
+  src/bag/stone_island.cpp
   src/bag/thresholds.cpp
   src/bag/options.cpp
   src/bag/report.cpp

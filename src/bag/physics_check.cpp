@@ -20,12 +20,6 @@ namespace virtual_go {
 namespace bag {
 namespace {
 
-// Kinetic plus the magnitude of potential energy: a scale that stays non-zero for a stone
-// that starts at rest at the origin (where E0 itself is zero).
-double energy_scale(const RigidBody& body, const Eigen::Vector3d& gravity) {
-  return body.kinetic_energy() + std::abs(body.potential_energy(gravity));
-}
-
 // The board of ~info as the core's distance, or nothing (no board, or ~info cannot describe one:
 // the note says why).
 std::optional<BoardDistance> board_of(const RecordingInfo& info, std::string& note) {
@@ -426,6 +420,10 @@ std::vector<SegmentEvent> events_of_stone(const std::vector<SegmentEvent>& event
     if (e.stone == name || (e.stone.empty() && name == info.stone_frame)) own.push_back(e);
   }
   return own;
+}
+
+double energy_scale(const RigidBody& body, const Eigen::Vector3d& gravity_world) {
+  return body.kinetic_energy() + std::abs(body.potential_energy(gravity_world));
 }
 
 RecordingInfo info_of_stone(const RecordingInfo& info, const StoneTrack& track) {

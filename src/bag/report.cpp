@@ -142,8 +142,31 @@ Report analyse(Recording recording, const LimitOverrides& limits) {
     }
   }
   if (!rec.snapshots.empty()) r.overlap = check_stone_overlaps(rec.stone_tracks, rec.snapshots);
+  // Islands: every checked stone with its ~stones track (the stone of ~odom too, checked on ~odom).
+  std::vector<IslandStone> island_stones;
+  auto track_of = [&](const std::string& name) -> const StoneTrack* {
+    for (const StoneTrack& t : rec.stone_tracks) {
+      if (t.name == name) return &t;
+    }
+    return nullptr;
+  };
+  if (r.physics) {
+    island_stones.push_back(
+        {rec.info->stone_frame, &*rec.info, &*r.physics, track_of(rec.info->stone_frame)});
+  }
+  for (StonePhysics& s : r.stones) {
+    if (s.physics) island_stones.push_back({s.name, &s.info, &*s.physics, track_of(s.name)});
+  }
+  if (!island_stones.empty() && !rec.snapshots.empty()) {
+    try {
+      r.islands = check_stone_islands(island_stones, rec.events, rec.snapshots);
+      exempt_island_samples(*r.islands, island_stones);
+    } catch (const std::exception& e) {
+      r.problems.push_back(std::string("island check failed: ") + e.what());
+    }
+  }
   r.checks = run_checks(r.recording, r.stats, r.physics ? &*r.physics : nullptr, limits, r.stones,
-                        r.overlap ? &*r.overlap : nullptr);
+                        r.overlap ? &*r.overlap : nullptr, r.islands ? &*r.islands : nullptr);
   return r;
 }
 
@@ -296,6 +319,18 @@ void print_report(std::ostream& out, const Report& report) {
     if (o.overlaps.size() > kShown) {
       out << "  ... " << o.overlaps.size() - kShown << " more overlapping pairs\n";
     }
+  }
+  if (report.islands) {
+    const StoneIslandResult& is = *report.islands;
+    out << "\nstone islands (stones in contact with each other, from their events): "
+        << is.islands.size();
+    if (!is.islands.empty()) {
+      const StoneIsland& w = is.islands[is.worst];
+      out << "; worst total energy rise " << sci(w.max_energy_rise) << " (relative) at "
+          << short_stamp_text(w.worst_stamp_ns) << " s, stones " << join(w.members, ", ") << " ("
+          << w.snapshots << " messages)";
+    }
+    out << "\n";
   }
 
   out << "\nchecks:\n";

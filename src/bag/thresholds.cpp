@@ -5,6 +5,7 @@
 #include <iomanip>
 #include <sstream>
 
+#include "virtual_go/common/formatting.h"
 #include "virtual_go/common/sim_time.h"
 #include "virtual_go/common/validation.h"
 #include "virtual_go/flight/integrator_registry.h"
@@ -106,7 +107,7 @@ PhysicsBounds physics_bounds(const std::string& integrator, double dt_s,
 std::vector<Check> run_checks(const Recording& recording, const std::vector<StampStatistics>& stats,
                               const PhysicsResult* physics, const LimitOverrides& overrides,
                               const std::vector<StonePhysics>& stones,
-                              const StoneOverlapResult* overlap) {
+                              const StoneOverlapResult* overlap, const StoneIslandResult* islands) {
   std::vector<Check> checks;
   auto add = [&](std::string figure, std::string subject, double value, double limit,
                  std::string basis) {
@@ -167,6 +168,22 @@ std::vector<Check> run_checks(const Recording& recording, const std::vector<Stam
           << " pairs over the limit";
     add(contact_limit(kOverlap).figure, "stones " + overlap->stone_a + ", " + overlap->stone_b,
         -overlap->min_gap_m, overlap_limit, basis.str());
+  }
+  if (islands != nullptr && !islands->islands.empty()) {
+    // The island's total energy is held to the per-stone contact limit, relative to the summed
+    // energy scale as a stone's is to its own.
+    const double limit = overrides.contact[kEnergyRise] ? *overrides.contact[kEnergyRise]
+                                                        : contact_limit(kEnergyRise).default_limit;
+    const StoneIsland& w = islands->islands[islands->worst];
+    std::ostringstream basis;
+    basis << contact_limit(kEnergyRise).option << ", relative to the members' summed scale; at "
+          << std::fixed << std::setprecision(6) << to_seconds(w.worst_stamp_ns) << " s; "
+          << islands->islands.size() << " islands, "
+          << std::count_if(islands->islands.begin(), islands->islands.end(),
+                           [&](const StoneIsland& i) { return !(i.max_energy_rise <= limit); })
+          << " over the limit";
+    add("island energy rise", "island of stones " + join(w.members, ", "), w.max_energy_rise, limit,
+        basis.str());
   }
   if (!recording.info || (physics == nullptr && stones.empty())) return checks;
   // A message with a NaN or infinity has no figures, and the maxima skip NaN: the count

@@ -532,3 +532,98 @@ TEST(ManyStones, EachStoneOnItsOwnEventsAndAMovedRestingStoneIsNamed) {
   vb::print_report(printed, report);
   EXPECT_NE(printed.str().find("black_2"), std::string::npos) << printed.str();
 }
+
+namespace {
+
+// Two stones of equal mass in one contact from t = 0 (each one's slide event naming the other),
+// flat at z = 0 (no potential energy) and 0.05 m apart: black_1 starts at 0.2 m/s along x and
+// hands its speed over to white_1, v_black = 0.2 cos(theta), v_white = 0.2 sin(theta) at
+// theta = 0, 0.4, 0.8, 1.2 (t = 0, 20, 40, 60 ms), so the sum of 1/2 m v^2 stays 1/2 m 0.04 while
+// white_1's own energy rises from zero. white_gain scales white_1's last speed.
+vb::Recording momentum_exchange(double white_gain) {
+  vb::Recording rec;
+  rec.info = info();
+  rec.stones_topic = "/stone/stones";
+  rec.events_topic = "/stone/events";
+  const std::string names[2] = {"black_1", "white_1"};
+  const Eigen::Vector3d x0[2] = {{0.0, 0.0, 0.0}, {0.05, 0.0, 0.0}};
+  for (int s = 0; s < 2; ++s) {
+    virtual_go::SegmentEvent e = event_at(0, "slide");
+    e.stone = names[s];
+    e.other_stone = names[1 - s];
+    e.state.position_world = x0[s];
+    e.state.velocity_world = {s == 0 ? 0.2 : 0.0, 0.0, 0.0};
+    rec.events.push_back(e);
+    rec.stone_tracks.push_back(track(names[s]));
+  }
+  for (int i = 0; i <= 3; ++i) {
+    const double theta = 0.4 * i;
+    const double speed[2] = {0.2 * std::cos(theta),
+                             0.2 * std::sin(theta) * (i == 3 ? white_gain : 1.0)};
+    vb::StonesSnapshot snap = flat_pair(x0[0], x0[1]);
+    snap.stamp_ns = i * 20 * kMs;
+    rec.snapshots.push_back(snap);
+    for (int s = 0; s < 2; ++s) {
+      vb::OdomSample o;
+      o.stamp_ns = snap.stamp_ns;
+      o.position_world = x0[s];
+      o.velocity_body = {speed[s], 0.0, 0.0};
+      rec.stone_tracks[s].samples.push_back(o);
+    }
+  }
+  return rec;
+}
+
+std::vector<std::string> failed_checks(const vb::Report& report) {
+  std::vector<std::string> failed;
+  for (const vb::Check& c : report.checks) {
+    if (!c.pass) failed.push_back(c.figure + ": " + c.subject);
+  }
+  return failed;
+}
+
+}  // namespace
+
+// One stone slows, the other speeds up by as much energy: white_1's own energy rises (from 0 to
+// 93 % of the total) yet the island's total does not, so nothing fails; with white_1's last speed
+// raised so that the total gains 2e-9 of itself the island fails, naming both stones, and no
+// per-stone energy rise does.
+TEST(StoneIslands, TotalEnergyOfStonesInContactNeverRises) {
+  const vb::Report kept = vb::analyse(momentum_exchange(1.0), vb::LimitOverrides{});
+  ASSERT_TRUE(kept.islands.has_value());
+  ASSERT_EQ(kept.islands->islands.size(), 1u);
+  const vb::StoneIsland& island = kept.islands->islands[0];
+  EXPECT_EQ(island.members, (std::vector<std::string>{"black_1", "white_1"}));
+  EXPECT_EQ(island.start_ns, 0);
+  EXPECT_EQ(island.snapshots, 4u);
+  EXPECT_LT(island.max_energy_rise, 1e-15);
+  ASSERT_EQ(kept.stones.size(), 2u);
+  ASSERT_TRUE(kept.stones[1].physics.has_value());
+  const vb::PhysicsResult& white = *kept.stones[1].physics;
+  // white_1's rise on its own: all of its energy above the event's zero, relative to its own
+  // scale (its largest energy so far), so 1; exempt within the island.
+  double own_rise = 0.0;
+  for (const vb::PhysicsSample& p : white.samples) own_rise = std::fmax(own_rise, p.energy_rise);
+  EXPECT_NEAR(own_rise, 1.0, 1e-12);
+  EXPECT_EQ(white.segments[0].max_energy_rise, 0.0);
+  EXPECT_TRUE(failed_checks(kept).empty()) << ::testing::PrintToString(failed_checks(kept));
+  std::ostringstream printed;
+  vb::print_report(printed, kept);
+  EXPECT_NE(printed.str().find("stone islands (stones in contact with each other, from their "
+                               "events): 1; worst total energy rise"),
+            std::string::npos)
+      << printed.str();
+
+  // Total at 60 ms: 0.04 (cos^2 + (g sin)^2), relative to the scale 0.04 (1/2 m cancels).
+  const double gain = std::sqrt(1.0 + 2e-9 / std::pow(std::sin(1.2), 2));
+  const vb::Report raised = vb::analyse(momentum_exchange(gain), vb::LimitOverrides{});
+  ASSERT_TRUE(raised.islands.has_value());
+  ASSERT_EQ(raised.islands->islands.size(), 1u);
+  const double expected = std::pow(std::cos(1.2), 2) + std::pow(gain * std::sin(1.2), 2) - 1.0;
+  EXPECT_NEAR(raised.islands->islands[0].max_energy_rise, expected, 1e-15);
+  EXPECT_NEAR(expected, 2e-9, 1e-15);
+  EXPECT_EQ(raised.islands->islands[0].worst_stamp_ns, 60 * kMs);
+  const std::vector<std::string> failed = failed_checks(raised);
+  ASSERT_EQ(failed.size(), 1u) << ::testing::PrintToString(failed);
+  EXPECT_EQ(failed[0], "island energy rise: island of stones black_1, white_1");
+}

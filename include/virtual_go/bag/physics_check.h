@@ -17,6 +17,7 @@
 
 #include "virtual_go/bag/recording.h"
 #include "virtual_go/body/motion_model.h"
+#include "virtual_go/body/rigid_body.h"
 #include "virtual_go/body/rigid_body_state.h"
 
 namespace virtual_go {
@@ -55,6 +56,10 @@ std::vector<SegmentPlan> plan_segments(const std::vector<OdomSample>& odom,
 // samples (they belong to the later event), so it is a contact segment of no length. Every
 // other reason not listed (slide, roll, rim: contact; rest: rest) starts a flight.
 SegmentKind segment_kind(const std::vector<SegmentEvent>& events, std::size_t index);
+
+// Kinetic plus the magnitude of potential energy: the scale the energy figures are relative to,
+// non-zero for a stone that starts at rest at the origin (where its energy itself is zero).
+double energy_scale(const RigidBody& body, const Eigen::Vector3d& gravity_world);
 
 // The first field of a sample holding a NaN or infinity ("position", "orientation",
 // "linear velocity", "angular velocity"; events: "angular momentum", "time offset"), or nullptr.

@@ -10,6 +10,7 @@
 #include "virtual_go/bag/physics_check.h"
 #include "virtual_go/bag/recording.h"
 #include "virtual_go/bag/stamp_statistics.h"
+#include "virtual_go/bag/stone_island.h"
 #include "virtual_go/bag/stone_overlap.h"
 #include "virtual_go/bag/thresholds.h"
 
@@ -24,6 +25,8 @@ struct Report {
   // first names them; and the overlap of every pair at each ~stones message.
   std::vector<StonePhysics> stones;
   std::optional<StoneOverlapResult> overlap;
+  // Stones linked by stone-stone contact events: the islands' total energy (stone_island.h).
+  std::optional<StoneIslandResult> islands;
   std::vector<Check> checks;
   std::vector<std::string> problems;  // the recording's, plus what the analysis could not do
   bool partial() const { return !problems.empty(); }

@@ -22,6 +22,7 @@
 #include "virtual_go/bag/physics_check.h"
 #include "virtual_go/bag/recording.h"
 #include "virtual_go/bag/stamp_statistics.h"
+#include "virtual_go/bag/stone_island.h"
 #include "virtual_go/bag/stone_overlap.h"
 
 namespace virtual_go {
@@ -93,11 +94,13 @@ struct Check {
 // One check per figure and periodic topic, and per physics figure the worst segment (largest
 // value / limit) of every stone: the one of ~odom (physics) and the others of ~stones (stones).
 // stats[i] belongs to recording.topics[i]. physics may be null (no ~info/~odom); overlap null
-// without ~stones.
+// without ~stones; islands null or empty: no island check (else one, on the worst island, held
+// to the energy rise limit).
 std::vector<Check> run_checks(const Recording& recording, const std::vector<StampStatistics>& stats,
                               const PhysicsResult* physics, const LimitOverrides& overrides,
                               const std::vector<StonePhysics>& stones = {},
-                              const StoneOverlapResult* overlap = nullptr);
+                              const StoneOverlapResult* overlap = nullptr,
+                              const StoneIslandResult* islands = nullptr);
 
 }  // namespace bag
 }  // namespace virtual_go
