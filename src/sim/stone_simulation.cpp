@@ -617,6 +617,10 @@ void StoneSimulation::check_room(std::size_t body, GoPoint point) {
       } catch (const InvalidArgument&) {
         // That one will be refused when it applies (the layout moved since it was accepted).
       }
+    } else if (c.reason == EventReason::place && c.point) {
+      // A drop nudges as a set-down does, and lands where it is aimed.
+      apply_plan(stones, plan_drop(*world_, world_->color_body(c.color), *c.point, stones));
+      names.push_back(c.name);
     } else if (c.reason == EventReason::set_state) {
       teleport(c.name.empty() ? stone_name(0) : c.name, c.state);
     } else if (c.reason == EventReason::reset) {
@@ -630,7 +634,7 @@ void StoneSimulation::check_room(std::size_t body, GoPoint point) {
         if (names[i] == (c.name.empty() ? stone_name(0) : c.name)) stones[i].movable = false;
       }
     }
-    // Drops and stones placed by pose start in the air: not in a set-down's way at that step.
+    // Stones placed by pose start in the air: not in a set-down's way at that step.
   }
   (void)plan_set_down(*world_, body, point, stones);  // throws "point": no room
 }

@@ -305,6 +305,32 @@ PlacementResult set_down_stone(World& world, StoneColor color, GoPoint point, do
   return result;
 }
 
+SetDownPlan plan_drop(const World& world, std::size_t body, GoPoint point,
+                      const std::vector<PlanStone>& stones) {
+  check_point(world, point);
+  // Aimed as a player aims: where set_down_stone would put it (a stone is 22.2 mm wide on a
+  // 22 mm grid, so over the intersection itself it would land on its neighbour's rim): the free
+  // spot nearest the intersection, else with the resting neighbours nudged apart. Over a point
+  // a stone already covers, or with no room, it falls over the intersection onto whatever lies
+  // there: physics, not rules.
+  const Layout l = layout_around(world, body, point, stones);
+  SetDownPlan plan;
+  plan.xy = l.point;
+  if (const std::optional<Eigen::Vector2d> free = nearest_free(world, l)) {
+    plan.xy = *free;
+    plan.offset_m = (*free - l.point).norm();
+  } else if (!point_taken(l)) {
+    try {
+      plan = plan_set_down(world, body, point, stones);
+    } catch (const InvalidArgument&) {
+      plan = SetDownPlan{};  // no room even with a nudge: over the intersection
+      plan.xy = l.point;
+    }
+  }
+  plan.stone = PlanStone{StoneId{}, plan.xy, l.z_centre, l.radius, false};  // in the air
+  return plan;
+}
+
 PlacementResult drop_stone(World& world, StoneColor color, GoPoint point, double drop_height_m,
                            double t_s, std::vector<WorldEvent>& events,
                            const Eigen::Vector3d& velocity_world,
@@ -317,25 +343,12 @@ PlacementResult drop_stone(World& world, StoneColor color, GoPoint point, double
   require_finite("velocity", velocity_world);
   require_finite("angular_velocity", angular_velocity_world);
   const std::size_t body = world.color_body(color);
-  // Aimed as a player aims: where set_down_stone would put it (a stone is 22.2 mm wide on a
-  // 22 mm grid, so over the intersection itself it would land on its neighbour's rim): the free
-  // spot nearest the intersection, else with the resting neighbours nudged apart. Over a point
-  // a stone already covers, or with no room, it falls over the intersection onto whatever lies
-  // there: physics, not rules.
   const std::vector<PlanStone> stones = plan_stones(world);
-  const Layout l = layout_around(world, body, point, stones);
-  SetDownPlan plan;
-  plan.xy = l.point;
-  if (const std::optional<Eigen::Vector2d> free = nearest_free(world, l)) {
-    plan.xy = *free;
-    plan.offset_m = (*free - l.point).norm();
-  } else if (!point_taken(l) && (t_s == world.time() || world.all_resting())) {
-    try {
-      plan = plan_set_down(world, body, point, stones);
-    } catch (const InvalidArgument&) {
-      plan = SetDownPlan{};  // no room even with a nudge: over the intersection
-      plan.xy = l.point;
-    }
+  SetDownPlan plan = plan_drop(world, body, point, stones);
+  if (plan.nudged && t_s > world.time() && !world.all_resting()) {
+    // The nudge is planned on the layout now, and stones move before t_s: over the point instead.
+    plan = SetDownPlan{};
+    plan.xy = go_point_world(world.config().board, point).head<2>();
   }
   // Checked: from here on nothing refuses.
   PlacementResult result = apply_moves(world, stones, plan, t_s, events);

@@ -95,6 +95,12 @@ SetDownPlan plan_set_down(const World& world, std::size_t body, GoPoint point,
 // The planner's layout after the plan: the moves made, the new stone appended.
 void apply_plan(std::vector<PlanStone>& stones, const SetDownPlan& plan);
 
+// Where drop_stone aims a stone of `body` at `point` among `stones` (as plan_set_down; the new
+// stone not movable: it is in the air). Throws InvalidArgument "point" off the grid; changes
+// nothing.
+SetDownPlan plan_drop(const World& world, std::size_t body, GoPoint point,
+                      const std::vector<PlanStone>& stones);
+
 // Drops a stone of `color` over `point` from drop_height_m (>= 0, finite: "drop_height") with a
 // twist (finite: "velocity", "angular_velocity"): flat, over the pose set_down_stone would take
 // (the free spot nearest the intersection, else the resting neighbours nudged apart, as in
