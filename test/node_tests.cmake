@@ -34,7 +34,8 @@ add_rostest_gtest(stone_node_rostest test/ros/stone_node_tf.test
   test/ros/test_stone_node_board.cpp
   test/ros/test_stone_node_controls.cpp
   test/ros/test_stone_node_stones.cpp
-  test/ros/test_stone_node_place.cpp)
+  test/ros/test_stone_node_place.cpp
+  test/ros/test_stone_node_free_fall.cpp)
 target_link_libraries(stone_node_rostest ${catkin_LIBRARIES} GTest::gtest)
 target_compile_definitions(stone_node_rostest PRIVATE STONE_NODE_PATH="$<TARGET_FILE:stone_node>")
 add_dependencies(stone_node_rostest stone_node ${${PROJECT_NAME}_EXPORTED_TARGETS}
@@ -49,7 +50,8 @@ foreach(node_test
     stone_node_controls
     stone_node_own_clock
     stone_node_stones
-    stone_node_place)
+    stone_node_place
+    stone_node_free_fall)
   add_rostest(test/ros/${node_test}.test DEPENDENCIES stone_node_rostest stone_node)
 endforeach()
 
