@@ -3,12 +3,13 @@
 // the others bit for bit still); an unknown or removed name is refused naming it and the stones
 // there are, with nothing queued; ~remove and ~clear take the initial stone `stone` off too and
 // ~reset puts it back; a set-down with no room is refused when asked, also when the layout that
-// leaves no room is only queued.
+// leaves no room is only queued (set-downs, or a drop that nudges).
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstring>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "sim/sim_test_support.h"
@@ -17,6 +18,7 @@
 #include "virtual_go/go/go_point.h"
 #include "virtual_go/sim/stone_simulation.h"
 #include "virtual_go/sim/stone_states.h"
+#include "virtual_go/world/stone_placement.h"
 
 namespace vg = virtual_go;
 using namespace simtest;
@@ -259,4 +261,84 @@ TEST(StoneSimulationNames, NoRoomIsRefusedWhenAskedAlsoBehindQueuedPlacements) {
   EXPECT_EQ(board_queued, static_cast<std::size_t>(queued));
   EXPECT_EQ(answer_stepped, "applied at the next physics step");
   EXPECT_EQ(answer_queued, "applied at the next physics step");
+}
+
+// A set-down queued behind a drop in the same step is judged on the layout the drop leaves. Two
+// blacks set down at C2 lie 11.1 mm either side of it (the second nudged the first), a white on
+// A2. Alone, a black set down at A2 fits: the white is pushed 10.9 mm right and the new stone
+// lies 11.1 mm left of A2, its centre 3 mm inside the board's left edge. A black dropped onto C2
+// first finds no free spot and nudges its neighbours apart: the inner black comes to 21.9 mm
+// from A2, touching the white (moved 0.19 mm left), so the set-down at A2 would push a stone off
+// the top face. The answer when asked must be the answer when applied: drop_stone then
+// set_down_stone on a World of the same board at one time, as apply_board_changes does (figures
+// measured with them). Before a1e9aef the room check ignored queued drops: it took the set-down,
+// which the World then refused ("was not placed").
+TEST(StoneSimulationNames, ASetDownBehindANudgingDropGetsTheAnswerItsApplicationGets) {
+  const auto set_up = [](vg::StoneSimulation& sim, std::int64_t& now) {
+    std::vector<vg::SegmentEvent> events;
+    run(sim, now, 10 * kMs, events);
+    place(sim, at("C2", "black"));
+    place(sim, at("C2", "black"));
+    place(sim, at("A2", "white"));
+    run(sim, now, 20 * kMs, events);
+  };
+  vg::PlaceRequest drop = at("C2", "black");
+  drop.drop_height_m = 0.05;  // its ball (11.1 mm) far above a set-down's height band
+  const auto field_of_refusal = [](vg::StoneSimulation& sim, const vg::PlaceRequest& r) {
+    try {
+      place(sim, r);
+    } catch (const vg::InvalidArgument& e) {
+      return e.field();
+    }
+    return std::string("(accepted)");
+  };
+
+  // Without the drop there is room at A2.
+  vg::StoneSimulation alone(board_scene());
+  std::int64_t now = kStart;
+  set_up(alone, now);
+  EXPECT_EQ(field_of_refusal(alone, at("A2", "black")), "(accepted)");
+
+  // Behind the drop, in the same step.
+  vg::StoneSimulation sim(board_scene());
+  now = kStart;
+  set_up(sim, now);
+  const std::vector<vg::StoneStateEntry> before = vg::stone_states(sim);
+  EXPECT_EQ(place(sim, drop), "black_3");
+  const std::string asked = field_of_refusal(sim, at("A2", "black"));
+  std::vector<vg::SegmentEvent> events;
+  run(sim, now, 10 * kMs, events);
+  const std::vector<vg::StoneStateEntry> after = vg::stone_states(sim);
+  // The drop nudged: the white on A2 moved towards the left edge (-x).
+  ASSERT_NE(find(before, "white_1"), nullptr);
+  ASSERT_NE(find(after, "white_1"), nullptr);
+  EXPECT_LT(find(after, "white_1")->output.position_world.x(),
+            find(before, "white_1")->output.position_world.x() - 1e-4);
+  // Taken when asked means placed when applied, with no note of a refusal.
+  if (asked == "(accepted)") {
+    EXPECT_NE(find(after, "black_4"), nullptr) << "accepted when asked, refused when applied";
+    EXPECT_EQ(sim.clear(), "applied at the next physics step");
+  }
+
+  // The application itself: the same requests on a World of the same board, at one time.
+  vg::World world(*sim.world_config(), std::vector<vg::RigidBodyState>{}, 0.0);
+  std::vector<vg::WorldEvent> world_events;
+  for (const auto& [point, color] :
+       {std::pair{"C2", vg::StoneColor::black}, std::pair{"C2", vg::StoneColor::black},
+        std::pair{"A2", vg::StoneColor::white}}) {
+    (void)vg::set_down_stone(world, color, vg::parse_gtp_point(point), 0.0, world_events);
+  }
+  const vg::PlacementResult dropped =
+      vg::drop_stone(world, vg::StoneColor::black, vg::parse_gtp_point("C2"), drop.drop_height_m,
+                     0.0, world_events);
+  EXPECT_TRUE(dropped.nudged);
+  std::string applied = "(accepted)";
+  try {
+    (void)vg::set_down_stone(world, vg::StoneColor::black, vg::parse_gtp_point("A2"), 0.0,
+                             world_events);
+  } catch (const vg::InvalidArgument& e) {
+    applied = e.field();
+  }
+  EXPECT_EQ(applied, "point") << "the scene lost its point: the nudge leaves room at A2";
+  EXPECT_EQ(asked, applied);
 }
