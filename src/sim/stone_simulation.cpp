@@ -618,8 +618,12 @@ void StoneSimulation::check_room(std::size_t body, GoPoint point) {
         // That one will be refused when it applies (the layout moved since it was accepted).
       }
     } else if (c.reason == EventReason::place && c.point) {
-      // A drop nudges as a set-down does, and lands where it is aimed.
-      apply_plan(stones, plan_drop(*world_, world_->color_body(c.color), *c.point, stones));
+      // A drop nudges as a set-down does, and lands where it is aimed; within this step it is
+      // where drop_stone lets it go, drop_height_m above a stone lying there (a set-down after it
+      // meets it in the air, or not at all: layout_around's height band).
+      SetDownPlan plan = plan_drop(*world_, world_->color_body(c.color), *c.point, stones);
+      plan.stone.z_m += c.drop_height_m;
+      apply_plan(stones, plan);
       names.push_back(c.name);
     } else if (c.reason == EventReason::set_state) {
       teleport(c.name.empty() ? stone_name(0) : c.name, c.state);

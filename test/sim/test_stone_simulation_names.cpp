@@ -6,6 +6,7 @@
 // leaves no room is only queued (set-downs, or a drop that nudges).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <string>
@@ -263,27 +264,20 @@ TEST(StoneSimulationNames, NoRoomIsRefusedWhenAskedAlsoBehindQueuedPlacements) {
   EXPECT_EQ(answer_queued, "applied at the next physics step");
 }
 
-// A set-down queued behind a drop in the same step is judged on the layout the drop leaves. Two
-// blacks set down at C2 lie 11.1 mm either side of it (the second nudged the first), a white on
-// A2. Alone, a black set down at A2 fits: the white is pushed 10.9 mm right and the new stone
-// lies 11.1 mm left of A2, its centre 3 mm inside the board's left edge. A black dropped onto C2
-// first finds no free spot and nudges its neighbours apart: the inner black comes to 21.9 mm
-// from A2, touching the white (moved 0.19 mm left), so the set-down at A2 would push a stone off
-// the top face. The answer when asked must be the answer when applied: drop_stone then
-// set_down_stone on a World of the same board at one time, as apply_board_changes does (figures
-// measured with them). Before a1e9aef the room check ignored queued drops: it took the set-down,
-// which the World then refused ("was not placed").
-TEST(StoneSimulationNames, ASetDownBehindANudgingDropGetsTheAnswerItsApplicationGets) {
-  const auto set_up = [](vg::StoneSimulation& sim, std::int64_t& now) {
-    std::vector<vg::SegmentEvent> events;
-    run(sim, now, 10 * kMs, events);
-    place(sim, at("C2", "black"));
-    place(sim, at("C2", "black"));
-    place(sim, at("A2", "white"));
-    run(sim, now, 20 * kMs, events);
-  };
-  vg::PlaceRequest drop = at("C2", "black");
-  drop.drop_height_m = 0.05;  // its ball (11.1 mm) far above a set-down's height band
+namespace {
+
+// How a black set-down at `point` is answered after `base` (set down, at rest): alone; when
+// asked behind `drop` queued in the same step (and whether, taken, it was placed when applied);
+// and by the application itself: drop_stone then set_down_stone on a World of the same board at
+// one time, as apply_board_changes does. "(accepted)" or the refusal's field.
+struct SetDownAnswers {
+  std::string alone, asked, applied;
+  bool placed = false;        // asked "(accepted)" and on the board after the step, no note
+  double base_moved_m = 0.0;  // largest horizontal move of a base stone in that step
+};
+
+SetDownAnswers set_down_answers(const std::vector<std::pair<std::string, std::string>>& base,
+                                const vg::PlaceRequest& drop, const std::string& point) {
   const auto field_of_refusal = [](vg::StoneSimulation& sim, const vg::PlaceRequest& r) {
     try {
       place(sim, r);
@@ -292,53 +286,106 @@ TEST(StoneSimulationNames, ASetDownBehindANudgingDropGetsTheAnswerItsApplication
     }
     return std::string("(accepted)");
   };
-
-  // Without the drop there is room at A2.
+  const auto set_up = [&](vg::StoneSimulation& sim, std::int64_t& now) {
+    std::vector<vg::SegmentEvent> events;
+    run(sim, now, 10 * kMs, events);
+    for (const auto& [p, color] : base) place(sim, at(p, color));
+    run(sim, now, 20 * kMs, events);
+  };
+  SetDownAnswers a;
   vg::StoneSimulation alone(board_scene());
   std::int64_t now = kStart;
   set_up(alone, now);
-  EXPECT_EQ(field_of_refusal(alone, at("A2", "black")), "(accepted)");
+  a.alone = field_of_refusal(alone, at(point, "black"));
 
-  // Behind the drop, in the same step.
   vg::StoneSimulation sim(board_scene());
   now = kStart;
   set_up(sim, now);
   const std::vector<vg::StoneStateEntry> before = vg::stone_states(sim);
-  EXPECT_EQ(place(sim, drop), "black_3");
-  const std::string asked = field_of_refusal(sim, at("A2", "black"));
+  place(sim, drop);
+  std::string name = "(refused)";
+  try {
+    name = place(sim, at(point, "black"));
+    a.asked = "(accepted)";
+  } catch (const vg::InvalidArgument& e) {
+    a.asked = e.field();
+  }
   std::vector<vg::SegmentEvent> events;
   run(sim, now, 10 * kMs, events);
   const std::vector<vg::StoneStateEntry> after = vg::stone_states(sim);
-  // The drop nudged: the white on A2 moved towards the left edge (-x).
-  ASSERT_NE(find(before, "white_1"), nullptr);
-  ASSERT_NE(find(after, "white_1"), nullptr);
-  EXPECT_LT(find(after, "white_1")->output.position_world.x(),
-            find(before, "white_1")->output.position_world.x() - 1e-4);
-  // Taken when asked means placed when applied, with no note of a refusal.
-  if (asked == "(accepted)") {
-    EXPECT_NE(find(after, "black_4"), nullptr) << "accepted when asked, refused when applied";
-    EXPECT_EQ(sim.clear(), "applied at the next physics step");
+  a.placed = find(after, name) != nullptr && sim.clear() == "applied at the next physics step";
+  for (const vg::StoneStateEntry& b : before) {
+    if (const vg::StoneStateEntry* e = find(after, b.name)) {
+      a.base_moved_m = std::max(
+          a.base_moved_m, (e->output.position_world - b.output.position_world).head<2>().norm());
+    }
   }
 
-  // The application itself: the same requests on a World of the same board, at one time.
   vg::World world(*sim.world_config(), std::vector<vg::RigidBodyState>{}, 0.0);
   std::vector<vg::WorldEvent> world_events;
-  for (const auto& [point, color] :
-       {std::pair{"C2", vg::StoneColor::black}, std::pair{"C2", vg::StoneColor::black},
-        std::pair{"A2", vg::StoneColor::white}}) {
-    (void)vg::set_down_stone(world, color, vg::parse_gtp_point(point), 0.0, world_events);
+  const auto color_of = [](const std::string& c) {
+    return c == "white" ? vg::StoneColor::white : vg::StoneColor::black;
+  };
+  for (const auto& [p, color] : base) {
+    (void)vg::set_down_stone(world, color_of(color), vg::parse_gtp_point(p), 0.0, world_events);
   }
-  const vg::PlacementResult dropped =
-      vg::drop_stone(world, vg::StoneColor::black, vg::parse_gtp_point("C2"), drop.drop_height_m,
-                     0.0, world_events);
-  EXPECT_TRUE(dropped.nudged);
-  std::string applied = "(accepted)";
+  (void)vg::drop_stone(world, color_of(drop.color), vg::parse_gtp_point(drop.point),
+                       drop.drop_height_m, 0.0, world_events);
+  a.applied = "(accepted)";
   try {
-    (void)vg::set_down_stone(world, vg::StoneColor::black, vg::parse_gtp_point("A2"), 0.0,
+    (void)vg::set_down_stone(world, vg::StoneColor::black, vg::parse_gtp_point(point), 0.0,
                              world_events);
   } catch (const vg::InvalidArgument& e) {
-    applied = e.field();
+    a.applied = e.field();
   }
-  EXPECT_EQ(applied, "point") << "the scene lost its point: the nudge leaves room at A2";
-  EXPECT_EQ(asked, applied);
+  return a;
+}
+
+vg::PlaceRequest dropped(const std::string& point, double height_m) {
+  vg::PlaceRequest r = at(point, "black");
+  r.drop_height_m = height_m;
+  return r;
+}
+
+}  // namespace
+
+// A set-down queued behind a drop in the same step is judged on the layout the drop leaves. Two
+// blacks set down at C2 lie 11.1 mm either side of it (the second nudged the first), a white on
+// A2. Alone, a black set down at A2 fits: the white is pushed 10.9 mm right and the new stone
+// lies 11.1 mm left of A2, its centre 3 mm inside the board's left edge. A black dropped onto C2
+// first finds no free spot and nudges its neighbours apart: the inner black comes to 21.9 mm
+// from A2, touching the white (moved 0.19 mm left), so the set-down at A2 would push a stone off
+// the top face (figures measured with drop_stone and set_down_stone). Before a1e9aef the room
+// check ignored queued drops: it took the set-down, which the World then refused ("black_4 was
+// not placed").
+TEST(StoneSimulationNames, ASetDownBehindANudgingDropGetsTheAnswerItsApplicationGets) {
+  const SetDownAnswers a = set_down_answers({{"C2", "black"}, {"C2", "black"}, {"A2", "white"}},
+                                            dropped("C2", 0.05), "A2");
+  EXPECT_EQ(a.alone, "(accepted)");
+  EXPECT_GT(a.base_moved_m, 1e-4) << "the drop did not nudge";
+  EXPECT_EQ(a.applied, "point") << "the scene lost its point: the nudge leaves room at A2";
+  EXPECT_EQ(a.asked, a.applied);
+  if (a.asked == "(accepted)") EXPECT_TRUE(a.placed) << "accepted when asked, refused when applied";
+}
+
+// A dropped stone is let go at its drop height: a set-down in the same step meets it there, not
+// on the board. From 5 cm its ball (radius 11.1 mm) clears a set-down's height band and it is in
+// nobody's way; from 5 mm it is. Onto A1 over a black lying there, and onto B1 between blacks on
+// A1 and C1 under a white on B2 (a free spot 2.97 mm below B1, no nudge), then a black set down
+// at A1: answered as applied at every height.
+TEST(StoneSimulationNames, ASetDownBehindADropMeetsItAtItsDropHeight) {
+  using Base = std::vector<std::pair<std::string, std::string>>;
+  const Base a1{{"A1", "black"}};
+  const Base a1_c1_b2{{"A1", "black"}, {"C1", "black"}, {"B2", "white"}};
+  for (const double height_m : {0.005, 0.05}) {
+    for (const auto& [base, drop_point] : {std::pair{a1, "A1"}, std::pair{a1_c1_b2, "B1"}}) {
+      const SetDownAnswers a = set_down_answers(base, dropped(drop_point, height_m), "A1");
+      SCOPED_TRACE(std::string("drop onto ") + drop_point + " from " + std::to_string(height_m));
+      EXPECT_EQ(a.alone, "(accepted)");
+      // From 5 cm the drop changes nothing for the set-down (the scene's point).
+      if (height_m == 0.05) EXPECT_EQ(a.applied, "(accepted)");
+      EXPECT_EQ(a.asked, a.applied);
+      if (a.asked == "(accepted)") EXPECT_TRUE(a.placed) << "accepted when asked, not placed";
+    }
+  }
 }
