@@ -114,6 +114,7 @@ const MotionModel& StoneSimulation::model_of(StoneId id) const {
 }
 
 void StoneSimulation::reset_world(const RigidBodyState& state, double t_s) {
+  planned_.valid = false;
   // World::reset keeps only stones of the config's body: the placed stones are added back where
   // they are, at rest if they rested (a stone set down flat on the board rests at once).
   std::vector<RigidBodyState> placed_states;
@@ -209,6 +210,7 @@ std::string StoneSimulation::place(const PlaceRequest& request, std::string& ans
   Change change;
   change.reason = EventReason::place;
   change.color = color;
+  std::optional<SetDownPlan> set_down;  // a set-down's plan, checked for room
   if (!request.point.empty()) {
     if (world_->config().board.lines != kGoLines) {
       throw InvalidArgument("point", "point: Go points need a board of " +
@@ -230,7 +232,7 @@ std::string StoneSimulation::place(const PlaceRequest& request, std::string& ans
     change.angular_velocity_world = request.angular_velocity_world;
     if (h == 0.0 && change.velocity_world.isZero(0.0) &&
         change.angular_velocity_world.isZero(0.0)) {
-      check_room(world_->color_body(color), *change.point);
+      set_down = check_room(world_->color_body(color), *change.point);
     }
   } else {
     // The colour's body is made once, here if not yet (World::color_body): its lens decides
@@ -249,6 +251,7 @@ std::string StoneSimulation::place(const PlaceRequest& request, std::string& ans
   change.name = stone_color_name(color) + "_" + std::to_string(number);
   enqueue(change);  // may refuse: the number is taken only once the request is accepted
   ++number;
+  if (set_down) planned_after(*set_down);
   answer_out = answer();
   return change.name;
 }
@@ -582,11 +585,23 @@ std::string StoneSimulation::request_target(const std::string& name) const {
   throw InvalidArgument("name", message);
 }
 
-void StoneSimulation::check_room(std::size_t body, GoPoint point) {
-  // The planner's layout now, then as each request waiting changes it, in order.
-  std::vector<PlanStone> stones = plan_stones(*world_);
-  std::vector<std::string> names(stones.size());
-  for (std::size_t i = 0; i < stones.size(); ++i) names[i] = name_of(stones[i].id);
+const std::vector<PlanStone>& StoneSimulation::planned_layout() {
+  PlannedLayout& l = planned_;
+  if (!l.valid || l.applied > pending_.size()) {
+    // The planner's layout now; the requests waiting follow, in order.
+    l.stones = plan_stones(*world_);
+    l.names.assign(l.stones.size(), "");
+    for (std::size_t i = 0; i < l.stones.size(); ++i) l.names[i] = name_of(l.stones[i].id);
+    l.applied = 0;
+    l.valid = true;
+  }
+  for (; l.applied < pending_.size(); ++l.applied) plan_change(pending_[l.applied]);
+  return l.stones;
+}
+
+void StoneSimulation::plan_change(const Change& c) {
+  std::vector<PlanStone>& stones = planned_.stones;
+  std::vector<std::string>& names = planned_.names;
   const auto drop = [&](const std::string& n) {
     for (std::size_t i = 0; i < names.size(); ++i) {
       if (names[i] != n) continue;
@@ -603,44 +618,53 @@ void StoneSimulation::check_room(std::size_t body, GoPoint point) {
       stones[i].movable = false;  // moving, or resting only after the step
     }
   };
-  for (const Change& c : pending_) {
-    if (c.reason == EventReason::clear) {
-      stones.clear();
-      names.clear();
-    } else if (c.reason == EventReason::remove) {
-      drop(c.name);
-    } else if (c.reason == EventReason::place && c.point && c.drop_height_m == 0.0 &&
-               c.velocity_world.isZero(0.0) && c.angular_velocity_world.isZero(0.0)) {
-      try {
-        apply_plan(stones, plan_set_down(*world_, world_->color_body(c.color), *c.point, stones));
-        names.push_back(c.name);
-      } catch (const InvalidArgument&) {
-        // That one will be refused when it applies (the layout moved since it was accepted).
-      }
-    } else if (c.reason == EventReason::place && c.point) {
-      // A drop nudges as a set-down does, and lands where it is aimed; within this step it is
-      // where drop_stone lets it go, drop_height_m above a stone lying there (a set-down after it
-      // meets it in the air, or not at all: layout_around's height band).
-      SetDownPlan plan = plan_drop(*world_, world_->color_body(c.color), *c.point, stones);
-      plan.stone.z_m += c.drop_height_m;
-      apply_plan(stones, plan);
+  if (c.reason == EventReason::clear) {
+    stones.clear();
+    names.clear();
+  } else if (c.reason == EventReason::remove) {
+    drop(c.name);
+  } else if (c.reason == EventReason::place && c.point && c.drop_height_m == 0.0 &&
+             c.velocity_world.isZero(0.0) && c.angular_velocity_world.isZero(0.0)) {
+    try {
+      apply_plan(stones, plan_set_down(*world_, world_->color_body(c.color), *c.point, stones));
       names.push_back(c.name);
-    } else if (c.reason == EventReason::set_state) {
-      teleport(c.name.empty() ? stone_name(0) : c.name, c.state);
-    } else if (c.reason == EventReason::reset) {
-      drop(stone_name(0));
-      const RigidBodyState& s = checked_.initial_state;
-      stones.push_back(PlanStone{StoneId{}, s.position_world.head<2>(), s.position_world.z(),
-                                 world_->body_model(0).lens().half_width(), false});
-      names.push_back(stone_name(0));
-    } else if (c.reason == EventReason::set_angular_velocity) {
-      for (std::size_t i = 0; i < names.size(); ++i) {
-        if (names[i] == (c.name.empty() ? stone_name(0) : c.name)) stones[i].movable = false;
-      }
+    } catch (const InvalidArgument&) {
+      // That one will be refused when it applies (the layout moved since it was accepted).
     }
-    // Stones placed by pose start in the air: not in a set-down's way at that step.
+  } else if (c.reason == EventReason::place && c.point) {
+    // A drop nudges as a set-down does, and lands where it is aimed; within this step it is
+    // where drop_stone lets it go, drop_height_m above a stone lying there (a set-down after it
+    // meets it in the air, or not at all: layout_around's height band).
+    SetDownPlan plan = plan_drop(*world_, world_->color_body(c.color), *c.point, stones);
+    plan.stone.z_m += c.drop_height_m;
+    apply_plan(stones, plan);
+    names.push_back(c.name);
+  } else if (c.reason == EventReason::set_state) {
+    teleport(c.name.empty() ? stone_name(0) : c.name, c.state);
+  } else if (c.reason == EventReason::reset) {
+    drop(stone_name(0));
+    const RigidBodyState& s = checked_.initial_state;
+    stones.push_back(PlanStone{StoneId{}, s.position_world.head<2>(), s.position_world.z(),
+                               world_->body_model(0).lens().half_width(), false});
+    names.push_back(stone_name(0));
+  } else if (c.reason == EventReason::set_angular_velocity) {
+    for (std::size_t i = 0; i < names.size(); ++i) {
+      if (names[i] == (c.name.empty() ? stone_name(0) : c.name)) stones[i].movable = false;
+    }
   }
-  (void)plan_set_down(*world_, body, point, stones);  // throws "point": no room
+  // Stones placed by pose start in the air: not in a set-down's way at that step.
+}
+
+SetDownPlan StoneSimulation::check_room(std::size_t body, GoPoint point) {
+  return plan_set_down(*world_, body, point, planned_layout());  // throws "point": no room
+}
+
+void StoneSimulation::planned_after(const SetDownPlan& plan) {
+  // Only onto the layout of every request before it; else the next check_room plans it anew.
+  if (!planned_.valid || planned_.applied + 1 != pending_.size()) return;
+  apply_plan(planned_.stones, plan);
+  planned_.names.push_back(pending_.back().name);
+  ++planned_.applied;
 }
 
 void StoneSimulation::replace_state(const RigidBodyState& state) {
@@ -694,6 +718,7 @@ void StoneSimulation::hold(const std::string& cause, UpdateResult& result) {
     failure +=
         " (" + std::to_string(pending_.size()) + " request(s) due at that step were not applied)";
     pending_.clear();
+    planned_.valid = false;
   }
   held_ = true;
   failure_ = failure;
@@ -942,6 +967,7 @@ bool StoneSimulation::step_world(UpdateResult& result, UpdateBudget& budget) {
     clock_.step();
     return true;
   }
+  planned_.valid = false;  // the World moves on and the queue empties
   const double t_s = seconds_between(epoch_ns_, next_ns);
   const MotionModel& model = checked_.setup.model;
   // Events up to t_s (the World moves on; if anything below throws, the state is held and the

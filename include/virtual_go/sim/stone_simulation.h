@@ -32,6 +32,7 @@
 #include "virtual_go/sim/state_request.h"
 #include "virtual_go/sim/stone_config.h"
 #include "virtual_go/sim/update_budget.h"
+#include "virtual_go/world/stone_placement.h"
 #include "virtual_go/world/world.h"
 
 namespace virtual_go {
@@ -256,8 +257,17 @@ class StoneSimulation {
   void apply_state_change(const Change& change, double t_s, std::int64_t stamp_ns,
                           std::vector<SegmentEvent>& events);
   // Throws InvalidArgument ("point") when a stone of `body` set down at `point` will find no room
-  // on the board as the pending requests leave it (stones that move in that step aside).
-  void check_room(std::size_t body, GoPoint point);
+  // on the board as the pending requests leave it (stones that move in that step aside); else
+  // returns the plan, for planned_after().
+  SetDownPlan check_room(std::size_t body, GoPoint point);
+  // The planner's layout as the pending requests leave it, each request planned once: rebuilt
+  // from the World only when the World or the queue changed under it (planned_.valid false).
+  const std::vector<PlanStone>& planned_layout();
+  // The change just queued (the last of pending_), set down by `plan` (check_room's), applied
+  // to the planned layout without planning it again.
+  void planned_after(const SetDownPlan& plan);
+  // One pending request applied to the planned layout, as it will apply to the World.
+  void plan_change(const Change& c);
   // The name of the stone with this World id ("" if none).
   std::string name_of(StoneId id) const;
   // The motion model of a World stone's body, for its outputs.
@@ -342,6 +352,17 @@ class StoneSimulation {
   // The World is part-way to the next grid time (a step cut short by the budget); its events
   // so far are in world_events_.
   bool mid_step_ = false;
+  // The set-down planner's view of the board once pending_[0 .. applied) apply (check_room): a
+  // ~place replaying every waiting request cost O(waiting x stones). Valid while the World and
+  // the queue change only by requests queued: every step (and a hold or a World reset)
+  // invalidates it.
+  struct PlannedLayout {
+    std::vector<PlanStone> stones;
+    std::vector<std::string> names;  // each stone's name, as stones
+    std::size_t applied = 0;
+    bool valid = false;
+  };
+  PlannedLayout planned_;
 };
 
 }  // namespace virtual_go
