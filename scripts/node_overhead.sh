@@ -42,29 +42,10 @@ if [ ! -x "$node_bin" ]; then
   echo "node_overhead.sh: $node_bin not found; build the package first (scripts/setup.sh)" >&2
   exit 1
 fi
-export PATH="/usr/bin:$PATH"
-# catkin's setup scripts read unset variables.
-set +u
-# shellcheck disable=SC1091
-source "$VG_BUILD/devel/setup.bash"
-set -u
-export ROS_HOME="${ROS_HOME:-$VG_BUILD/ros_home}"
-mkdir -p "$ROS_HOME" "$(dirname "$out")"
-# A private master, so a running roscore (or a colleague's test) is neither used nor disturbed.
-port=$((11400 + RANDOM % 500))
-export ROS_MASTER_URI="http://localhost:$port"
-
-pids=()
-cleanup() {
-  local p
-  for p in "${pids[@]}"; do kill "$p" 2>/dev/null || true; done
-  for p in "${pids[@]}"; do wait "$p" 2>/dev/null || true; done
-}
-trap cleanup EXIT
-
-roscore -p "$port" >"$ROS_HOME/node_overhead_roscore.log" 2>&1 &
-pids+=($!)
-for _ in $(seq 50); do rosparam list >/dev/null 2>&1 && break; sleep 0.2; done
+# shellcheck source=scripts/setup.sh
+source "$VG_ROOT/scripts/setup.sh"
+vg_private_master node_overhead 11400 500
+mkdir -p "$(dirname "$out")"
 
 # The measuring client: subscribes, waits for the node's first message, then samples the node's
 # CPU time and the /tf arrival times over the window. Prints one Markdown table row.
@@ -75,6 +56,8 @@ import rospy
 from tf2_msgs.msg import TFMessage
 from geometry_msgs.msg import PoseStamped
 from nav_msgs.msg import Odometry
+sys.path.insert(0, os.path.join(os.environ["VG_ROOT"], "scripts"))
+from node_cpu import cpu_seconds
 
 pid, rate, window, mode = int(sys.argv[1]), float(sys.argv[2]), float(sys.argv[3]), sys.argv[4]
 rospy.init_node("node_overhead_probe", anonymous=True, disable_signals=True)
@@ -97,15 +80,10 @@ if mode == "full":
     rospy.Subscriber("/stone/odom", Odometry, counter("odom"), queue_size=1000, tcp_nodelay=True)
 time.sleep(2.0)  # connections up, node warmed
 
-def cpu_seconds():
-    with open(f"/proc/{pid}/stat") as f:
-        fields = f.read().rsplit(")", 1)[1].split()
-    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")  # utime + stime
-
 recording[0] = True
-c0, t0 = cpu_seconds(), time.monotonic()
+c0, t0 = cpu_seconds(pid), time.monotonic()
 time.sleep(window)
-c1, t1 = cpu_seconds(), time.monotonic()
+c1, t1 = cpu_seconds(pid), time.monotonic()
 recording[0] = False
 cpu = 100.0 * (c1 - c0) / (t1 - t0)
 periods = sorted(1e3 * (b - a) for a, b in zip(arrivals, arrivals[1:]))

@@ -68,28 +68,11 @@ if [ -n "$baseline" ] && [ ! -x "$baseline" ]; then
   echo "replay_benchmark.sh: --baseline $baseline is not an executable" >&2
   exit 2
 fi
-export PATH="/usr/bin:$PATH"
-set +u  # catkin's setup scripts read unset variables
-# shellcheck disable=SC1091
-source "$VG_BUILD/devel/setup.bash"
-set -u
-export ROS_HOME="${ROS_HOME:-$VG_BUILD/ros_home}"
-mkdir -p "$ROS_HOME" "$(dirname "$out")"
-port=$((11900 + RANDOM % 400))
-export ROS_MASTER_URI="http://localhost:$port"
-
-pids=()
-cleanup() {
-  local p
-  for p in "${pids[@]}"; do kill "$p" 2>/dev/null || true; done
-  for p in "${pids[@]}"; do wait "$p" 2>/dev/null || true; done
-}
-trap cleanup EXIT
-
+# shellcheck source=scripts/setup.sh
+source "$VG_ROOT/scripts/setup.sh"
+vg_private_master replay_benchmark 11900 400
+mkdir -p "$(dirname "$out")"
 : >"$ROS_HOME/replay_benchmark_node.log"  # every node's output, appended
-roscore -p "$port" >"$ROS_HOME/replay_benchmark_roscore.log" 2>&1 &
-pids+=($!)
-for _ in $(seq 50); do rosparam list >/dev/null 2>&1 && break; sleep 0.2; done
 
 # Starts node binary $1 named /stone with the parameters in "$2" (YAML); sets node_pid.
 start_node() {
@@ -170,6 +153,8 @@ import os, sys, time
 import rospy
 from tf2_msgs.msg import TFMessage
 from virtual_go.srv import PlaceStone
+sys.path.insert(0, os.path.join(os.environ["VG_ROOT"], "scripts"))
+from node_cpu import cpu_seconds
 pid, window, places, build, case = int(sys.argv[1]), float(sys.argv[2]), sys.argv[3] == "1", sys.argv[4], sys.argv[5]
 rospy.init_node("replay_benchmark_cpu", anonymous=True, disable_signals=True)
 tf = [0]
@@ -187,14 +172,9 @@ if places:
                 sys.exit("~place %s%d: %s" % (c, r, answer.message))
 time.sleep(3.0)  # the scene settled (the set-down stones rest at once), connections up
 
-def cpu_seconds():
-    with open(f"/proc/{pid}/stat") as f:
-        fields = f.read().rsplit(")", 1)[1].split()
-    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
-
-n0, c0, t0 = tf[0], cpu_seconds(), time.monotonic()
+n0, c0, t0 = tf[0], cpu_seconds(pid), time.monotonic()
 time.sleep(window)
-n1, c1, t1 = tf[0], cpu_seconds(), time.monotonic()
+n1, c1, t1 = tf[0], cpu_seconds(pid), time.monotonic()
 print(f"| {build} | {case} | {100.0 * (c1 - c0) / (t1 - t0):.2f} | {n1 - n0} |")
 rospy.signal_shutdown("done")
 EOF

@@ -121,6 +121,30 @@ vg_source_devel() {
   return $status
 }
 
+# A private ROS master for a benchmark script, so that a running roscore (or a colleague's test)
+# is neither used nor disturbed: the environment and devel space as above, ROS_MASTER_URI on a
+# port drawn from [$2, $2 + $3), roscore logging to $ROS_HOME/$1_roscore.log. Every process the
+# caller appends to the array `pids` (roscore is the first) is ended on exit (vg_stop_pids).
+vg_private_master() {
+  local name="$1" first_port="$2" ports="$3"
+  vg_environment
+  vg_source_devel || return 1
+  export VG_ROOT  # scripts/node_cpu.py is found through it
+  local port=$((first_port + RANDOM % ports))
+  export ROS_MASTER_URI="http://localhost:$port"
+  pids=()
+  trap vg_stop_pids EXIT
+  roscore -p "$port" >"$ROS_HOME/${name}_roscore.log" 2>&1 &
+  pids+=($!)
+  local _
+  for _ in $(seq 50); do rosparam list >/dev/null 2>&1 && break; sleep 0.2; done
+}
+vg_stop_pids() {
+  local p
+  for p in "${pids[@]}"; do kill "$p" 2>/dev/null || true; done
+  for p in "${pids[@]}"; do wait "$p" 2>/dev/null || true; done
+}
+
 if [ "${BASH_SOURCE[0]}" = "$0" ]; then
   set -euo pipefail
   case "${1:-}" in
