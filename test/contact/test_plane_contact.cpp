@@ -12,6 +12,7 @@
 #include <cmath>
 #include <functional>
 #include <iostream>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -896,6 +897,126 @@ TEST(PlaneContact, AReleasedSlipFollowsCoulombsDirectionFromItsStart) {
   report("released slip: worst angle outside it (rad)", worst_outside);
   report("released slip: integrator steps until it left the layer",
          static_cast<double>(phase.counters().steps - steps_at_release));
+}
+
+// The direction a part released from zero motion takes, found by brute force: its force at the
+// bound against s, the other parts as in `mode`; the zeros of (s x a)_z on a fine scan of the
+// circle, refined by bisection, with s . a > 0, the one nearest the hint.
+Vector3d released_direction_by_scan(const vg::PlaneContactSetup& setup, vg::PlaneContactMode mode,
+                                    const vg::PlaneContactKinematics& k, bool tangential,
+                                    const Vector3d& hint) {
+  auto residual = [&](double angle, double* along) {
+    vg::ContactLawPart& part = tangential ? mode.tangential : mode.rolling;
+    part.law = vg::ContactLaw::sliding;
+    part.reference_world = Vector3d(std::cos(angle), std::sin(angle), 0.0);
+    const vg::PlaneContactForces f = vg::solve_plane_contact(setup, mode, k);
+    Vector3d acc = tangential ? f.slip_acceleration_world : f.angular_acceleration_world;
+    acc.z() = 0.0;
+    if (along) *along = part.reference_world.dot(acc);
+    return part.reference_world.cross(acc).z();
+  };
+  const int n = 4096;
+  Vector3d best = hint;
+  double best_alignment = -2.0;
+  double previous = residual(0.0, nullptr);
+  for (int i = 1; i <= n; ++i) {
+    double lo = 2 * M_PI * (i - 1) / n, hi = 2 * M_PI * i / n;
+    const double value = residual(hi, nullptr);
+    if ((previous <= 0.0) != (value <= 0.0)) {
+      double f_lo = previous;
+      for (int j = 0; j < 100 && hi - lo > 1e-14; ++j) {
+        const double mid = 0.5 * (lo + hi);
+        const double fm = residual(mid, nullptr);
+        if ((fm <= 0.0) == (f_lo <= 0.0)) {
+          lo = mid;
+          f_lo = fm;
+        } else {
+          hi = mid;
+        }
+      }
+      double along = 0.0;
+      const double root = 0.5 * (lo + hi);
+      residual(root, &along);
+      const Vector3d s(std::cos(root), std::sin(root), 0.0);
+      if (along > 0.0 && s.dot(hint) > best_alignment) {
+        best_alignment = s.dot(hint);
+        best = s;
+      }
+    }
+    previous = value;
+  }
+  return best;
+}
+
+TEST(PlaneContact, AReleasedPartTakesTheConsistentDirectionABruteForceScanFinds) {
+  // Stones set down tilted, with their contact point and rolling still and some spin: held
+  // stuck they would need more friction or rolling couple than the law gives, so the mode
+  // choice releases the part that exceeds its bound most, in the consistent direction (the
+  // part's acceleration along it) nearest the reverse of the force it needed. That direction
+  // against a brute-force scan of 4096 directions with a force solve each.
+  const auto model = stone_model();
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  int tangential_released = 0, rolling_released = 0;
+  double worst = 0.0;
+  long most_solves = 0;
+  for (int trial = 0; trial < 60; ++trial) {
+    const double tilt = (3.0 + 84.0 * unit(rng)) * kDeg;
+    const double heading = 2 * M_PI * unit(rng);
+    const Quaterniond q = Quaterniond(Eigen::AngleAxisd(heading, Vector3d::UnitZ())) *
+                          tilt_about_y(tilt) *
+                          Quaterniond(Eigen::AngleAxisd(2 * M_PI * unit(rng), Vector3d::UnitZ()));
+    const double spin = 40.0 * (unit(rng) - 0.5);
+    const Vector3d omega(0, 0, spin);
+    const Vector3d v = -omega.cross(lowest_offset(q));  // contact point still
+    // Odd trials: a rolling resistance that holds most tilts, low friction (the slip released).
+    const vg::ContactMaterial law =
+        trial % 2 ? material(0.05, 0.02, 15e-6) : material(0.3, 5e-6, 15e-6);
+    const vg::RigidBodyState start = on_plane(model, q, Vector2d(0.01, -0.02), v.head<2>(), omega);
+    vg::PlaneContact phase(model, kLens, kGravity, 0.0, vg::PlaneRegion::whole_plane(), law, start,
+                           0.0);
+    const vg::PlaneContactMode chosen = phase.mode();
+    // The reference: every part with zero motion stuck, the worst one released.
+    const vg::PlaneContactSetup& setup = phase.setup();
+    vg::PlaneContactMode stuck;
+    stuck.part = chosen.part;
+    stuck.tangential.law = stuck.rolling.law = vg::ContactLaw::stuck;
+    stuck.spinning.law =
+        std::abs(spin) > vg::kZeroAngularSpeed ? vg::ContactLaw::sliding : vg::ContactLaw::stuck;
+    stuck.spinning.reference_world = Vector3d(0, 0, spin > 0 ? 1.0 : -1.0);
+    const vg::RigidBodyState s0 = phase.state_at(0.0);
+    const vg::PlaneContactKinematics k =
+        vg::plane_contact_kinematics(setup, stuck, s0.position_world.head<2>(), s0.orientation,
+                                     s0.velocity_world.head<2>(), omega_of(model, s0));
+    const vg::PlaneContactForces f = vg::solve_plane_contact(setup, stuck, k);
+    ASSERT_TRUE(f.solved);
+    if (f.normal_force_n <= 0.0) continue;  // lifts off at once
+    const double ratio_t = f.friction_force_world.norm() / (law.friction * f.normal_force_n);
+    const double ratio_r =
+        f.rolling_couple_world.norm() / (law.rolling_resistance_m * f.normal_force_n);
+    if (std::max(ratio_t, ratio_r) <= 1.0) continue;  // holds: nothing released
+    const bool tangential = ratio_t > ratio_r;
+    const Vector3d needed = tangential ? f.friction_force_world : f.rolling_couple_world;
+    const Vector3d expected =
+        released_direction_by_scan(setup, stuck, k, tangential, -needed.normalized());
+    const vg::ContactLawPart& part = tangential ? chosen.tangential : chosen.rolling;
+    ASSERT_EQ(part.law, vg::ContactLaw::sliding) << "trial " << trial;
+    const Vector3d got = part.reference_world.normalized();
+    const double angle = std::atan2(got.cross(expected).norm(), got.dot(expected));
+    EXPECT_LT(angle, 1e-9) << "trial " << trial << (tangential ? " tangential" : " rolling");
+    worst = std::max(worst, angle);
+    ++(tangential ? tangential_released : rolling_released);
+    // The direction is found from a fit of the residual (a handful of force solves), not by a
+    // scan of the circle with a solve per direction (64 and more).
+    EXPECT_LE(phase.counters().extra_solves, 40) << "trial " << trial;
+    most_solves = std::max(most_solves, phase.counters().extra_solves);
+  }
+  EXPECT_GE(tangential_released, 5);
+  EXPECT_GE(rolling_released, 5);
+  report("released direction: worst angle to the brute-force scan (rad)", worst);
+  report("released direction: tangential releases checked", tangential_released);
+  report("released direction: rolling releases checked", rolling_released);
+  report("released direction: most force solves to choose a mode", most_solves);
 }
 
 TEST(PlaneContact, SlidingCost) {
