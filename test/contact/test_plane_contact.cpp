@@ -9,6 +9,8 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <array>
+#include <boost/numeric/odeint.hpp>
 #include <cmath>
 #include <functional>
 #include <iostream>
@@ -491,6 +493,81 @@ TEST(PlaneContact, SpinOnTheFaceStopsLinearlyAtTheExactTime) {
   report("spin: stop time - I3 w0/(l_s m g) (s)", r.last.time_s - stop);
   report("spin: worst |omega - linear| / omega0", worst);
   report_cost("spinning flat (10 rad/s)", phase.counters(), r.last.time_s);
+}
+
+TEST(PlaneContact, FlatSlideAndSpinDownWithRollingHeldIsExactAndCostsOneStepPerStop) {
+  // Flat on its face with a rolling resistance that holds the friction's couple (l_r >= mu c):
+  // G slides in a straight line at mu g and stops at v0 / (mu g) after v0^2 / (2 mu g), the spin
+  // falls at l_s m g / I3 and stops at I3 w0 / (l_s m g), then exact rest. Checked against those
+  // closed forms, against an independent integration (Boost.Odeint, Dormand-Prince 5) of the
+  // same Newton-Euler equations, and against the core's integrator on the same stone tilted by
+  // 1e-7 rad (no closed form there: the axis is not vertical).
+  const double mu = 0.3, l_r = 0.01, l_s = 15e-6, v0 = 0.3, w0 = 15.0;
+  const Vector2d dir(0.6, 0.8), xy0(0.01, 0.02);
+  const double slip_stop = v0 / (mu * kG), spin_stop = kI3 * w0 / (l_s * kM * kG);
+  const auto model = stone_model();
+  auto make = [&](double tilt) {
+    return vg::PlaneContact(
+        model, kLens, kGravity, 0.0, vg::PlaneRegion::whole_plane(), material(mu, l_r, l_s),
+        on_plane(model, tilt_about_y(tilt), xy0, v0 * dir, Vector3d(0, 0, w0)), 0.0);
+  };
+  vg::PlaneContact flat = make(0.0);
+  const Trace r = trace(flat, model, spin_stop + 1.0, 0.01);
+  ASSERT_EQ(r.events.size(), 2u);
+  EXPECT_EQ(r.events[0].event, vg::PlaneContactEvent::slip_stop);
+  EXPECT_NEAR(r.events[0].time_s, slip_stop, 1e-15);
+  EXPECT_EQ(r.last.event, vg::PlaneContactEvent::rest);
+  EXPECT_NEAR(r.last.time_s, spin_stop, 1e-12 * spin_stop);
+  const Vector2d x_end = xy0 + v0 * v0 / (2 * mu * kG) * dir;
+  EXPECT_NEAR((r.last.state.position_world.head<2>() - x_end).norm(), 0.0, 1e-15);
+  EXPECT_EQ(r.last.state.velocity_world.norm(), 0.0);
+  expect_energy_never_rises(r);
+  EXPECT_LE(flat.counters().steps, 3);  // one closed-form piece per stop
+  EXPECT_EQ(flat.counters().rhs_evaluations, 0);
+
+  // Odeint on (x, y, v_x, v_y, omega_z, psi) up to just before the slip stops.
+  using OdeState = std::array<double, 6>;
+  auto newton_euler = [&](const OdeState& y, OdeState& dy, double /*t*/) {
+    const double speed = std::hypot(y[2], y[3]);
+    dy[0] = y[2];
+    dy[1] = y[3];
+    dy[2] = -mu * kG * y[2] / speed;
+    dy[3] = -mu * kG * y[3] / speed;
+    dy[4] = -(y[4] > 0 ? 1.0 : -1.0) * l_s * kM * kG / kI3;
+    dy[5] = y[4];
+  };
+  OdeState y{xy0.x(), xy0.y(), v0 * dir.x(), v0 * dir.y(), w0, 0.0};
+  const double t_check = 0.9 * slip_stop;
+  boost::numeric::odeint::integrate_adaptive(
+      boost::numeric::odeint::make_controlled<boost::numeric::odeint::runge_kutta_dopri5<OdeState>>(
+          1e-13, 1e-13),
+      newton_euler, y, 0.0, t_check, 1e-4);
+  vg::PlaneContact flat_again = make(0.0);
+  flat_again.advance(t_check);
+  const vg::RigidBodyState s = flat_again.state_at(t_check);
+  EXPECT_NEAR(s.position_world.x(), y[0], 1e-12);
+  EXPECT_NEAR(s.position_world.y(), y[1], 1e-12);
+  EXPECT_NEAR(s.velocity_world.x(), y[2], 1e-11);
+  EXPECT_NEAR(s.velocity_world.y(), y[3], 1e-11);
+  EXPECT_NEAR(omega_of(model, s).z(), y[4], 1e-10);
+  const Vector3d e_x = s.orientation * Vector3d::UnitX();
+  EXPECT_NEAR(std::remainder(std::atan2(e_x.y(), e_x.x()) - y[5], 2 * M_PI), 0.0, 1e-10);
+
+  // The integrator on the stone tilted by 1e-7 rad: the same motion to O(1e-7).
+  vg::PlaneContact tilted = make(1e-7);
+  const Trace rt = trace(tilted, model, spin_stop + 1.0, 0.01);
+  ASSERT_GE(rt.events.size(), 2u);
+  EXPECT_EQ(rt.events[0].event, vg::PlaneContactEvent::slip_stop);
+  EXPECT_NEAR(rt.events[0].time_s, slip_stop, 1e-6 * slip_stop);
+  EXPECT_EQ(rt.last.event, vg::PlaneContactEvent::rest);
+  EXPECT_NEAR(rt.last.time_s, spin_stop, 1e-6 * spin_stop);
+  EXPECT_NEAR((rt.last.state.position_world.head<2>() - x_end).norm(), 0.0, 1e-8);
+  report("flat slide+spin: slip stop - v0/(mu g) (s)", r.events[0].time_s - slip_stop);
+  report("flat slide+spin: rest - I3 w0/(l_s m g) (s)", r.last.time_s - spin_stop);
+  report("flat slide+spin: tilted 1e-7 (integrated) rest - closed form (s)",
+         rt.last.time_s - r.last.time_s);
+  report_cost("flat slide+spin, closed form", flat.counters(), r.last.time_s);
+  report_cost("flat slide+spin tilted 1e-7, integrated", tilted.counters(), rt.last.time_s);
 }
 
 TEST(PlaneContact, RimRollingInPlaceKeepsTheCentreFixedAndTheEnergy) {
