@@ -50,6 +50,10 @@ class PlaneContact::Impl {
     dop853::Stages<plane_contact_detail::kStateSize> k;
     std::array<State, 4> dense;  // the dense output's coefficients, once computed
     bool dense_ready = false;
+    // A closed-form piece instead of an integrator step: y(t) = y0 + tau rate + tau^2/2 accel,
+    // tau = t - t_begin in [0, h] (plane_contact_stepping.cpp, flat_closed_form).
+    bool closed_form = false;
+    State rate, accel;
   };
   // The kept segments, oldest first, in storage that grows to at most kMaxStoredSegments and is
   // then reused: no heap work per step once it has grown.
@@ -87,6 +91,10 @@ class PlaneContact::Impl {
   // --- Stepping and sampling (plane_contact_stepping.cpp)
   void refresh_references();
   void take_step();
+  // The flat stone on its cap (axis vertical, rolling stuck) sliding and/or spinning down: one
+  // closed-form piece up to its first event instead of integrator steps. False when the mode or
+  // the state is not that one (nothing changed then).
+  bool flat_closed_form();
   void step_in(Segment& segment);
   State state_in(const Segment& segment, double t) const;
   Sample sample(double t) const;

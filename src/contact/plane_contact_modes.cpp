@@ -1,5 +1,7 @@
 // PlaneContact's choice of the mode at an event (plane_contact_laws.h): which parts stick, which
 // slide and in which direction, whether the stone lifts off or rests.
+#include <algorithm>
+#include <array>
 #include <boost/math/tools/toms748_solve.hpp>
 #include <cmath>
 #include <limits>
@@ -17,7 +19,71 @@ constexpr double kStaticSlack = 1e-12;
 // Directions tried when a stuck part is released with zero velocity.
 constexpr int kReleaseDirections = 64;
 
+// Fine grid on which the zeros of the fitted residual are bracketed (no solves).
+constexpr int kFitGrid = 360;
+// Directions solved for the fit (an exact DFT up to degree 4), and how far degrees 3 and 4 may
+// stay from zero relative to the largest sample before the fit is not trusted.
+constexpr int kFitSamples = 8;
+constexpr double kFitCheck = 1e-8;
+
 Vector3 horizontal_unit(double angle) { return {std::cos(angle), std::sin(angle), 0.0}; }
+
+// a0 + a1 cos t + b1 sin t + a2 cos 2t + b2 sin 2t.
+struct TrigPolynomial2 {
+  double a0 = 0.0, a1 = 0.0, b1 = 0.0, a2 = 0.0, b2 = 0.0;
+  double at(double t) const { return at(std::cos(t), std::sin(t)); }
+  double at(double c, double s) const {
+    return a0 + a1 * c + b1 * s + a2 * (c * c - s * s) + b2 * (2.0 * s * c);
+  }
+};
+
+// cos and sin at the fine grid's nodes 2 pi i / kFitGrid, i = 0 .. kFitGrid.
+struct GridTable {
+  std::array<double, kFitGrid + 1> c, s;
+  GridTable() {
+    for (int i = 0; i <= kFitGrid; ++i) {
+      c[i] = std::cos(2.0 * M_PI * i / kFitGrid);
+      s[i] = std::sin(2.0 * M_PI * i / kFitGrid);
+    }
+  }
+};
+const GridTable& grid_table() {
+  static const GridTable table;
+  return table;
+}
+
+// residual / N sampled at kFitSamples directions: the degree-2 polynomial, or nothing when a
+// sample is not finite, N vanishes somewhere or degrees 3 and 4 do not vanish.
+template <class Residual>
+std::optional<TrigPolynomial2> fitted_residual(Residual& residual) {
+  std::array<double, kFitSamples> q{};
+  double scale = 0.0;
+  for (int j = 0; j < kFitSamples; ++j) {
+    double normal = 0.0;
+    const double r = residual(2.0 * M_PI * j / kFitSamples, nullptr, &normal);
+    if (!(normal != 0.0) || !std::isfinite(r) || !std::isfinite(normal)) return std::nullopt;
+    q[j] = r / normal;
+    scale = std::max(scale, std::abs(q[j]));
+  }
+  auto coefficient = [&](int degree, bool sine) {
+    double sum = 0.0;
+    for (int j = 0; j < kFitSamples; ++j) {
+      const double t = 2.0 * M_PI * degree * j / kFitSamples;
+      sum += q[j] * (sine ? std::sin(t) : std::cos(t));
+    }
+    return sum * (degree == 0 || 2 * degree == kFitSamples ? 1.0 : 2.0) / kFitSamples;
+  };
+  TrigPolynomial2 p;
+  p.a0 = coefficient(0, false);
+  p.a1 = coefficient(1, false);
+  p.b1 = coefficient(1, true);
+  p.a2 = coefficient(2, false);
+  p.b2 = coefficient(2, true);
+  const double high =
+      std::hypot(coefficient(3, false), coefficient(3, true), coefficient(4, false));
+  if (!(high <= kFitCheck * scale)) return std::nullopt;
+  return p;
+}
 
 }  // namespace
 
@@ -50,38 +116,99 @@ Vector3 PlaneContactLaws::release_direction(const PlaneContactMode& mode,
                                             const PlaneContactKinematics& k, bool tangential,
                                             const Vector3& hint) const {
   // The released part starts from zero motion, sliding along s with its force at the bound
-  // against s. Consistency: the part's acceleration must point along +s. Scan the circle for
-  // zeros of (s x acceleration)_z, refine them, keep those with s . acceleration > 0, and take
-  // the one nearest the hint (the reverse of the force the stuck part needed).
-  auto residual = [&](double angle, double* along) {
+  // against s. Consistency: the part's acceleration must point along +s. Of the zeros of the
+  // residual (s x acceleration)_z with s . acceleration > 0, take the one nearest the hint (the
+  // reverse of the force the stuck part needed).
+  //
+  // The constraint equations are linear in the unknown forces with the released force
+  // -bound N s: N = N0 / (1 + w . s) (Sherman-Morrison) and acceleration / N is affine in s, so
+  // residual / N is a trigonometric polynomial of degree 2 in the angle of s. Five solves fix it;
+  // eight (an exact discrete Fourier transform up to degree 4) also check that degrees 3 and 4
+  // vanish. Its zeros are then bracketed on a fine grid without further solves and only the
+  // chosen one is refined on the full residual. Where the check fails (a force law that does not
+  // have this structure) the circle is scanned with a solve per direction, as before.
+  auto trial_forces = [&](double angle) {
     PlaneContactMode trial = mode;
     ContactLawPart& part = tangential ? trial.tangential : trial.rolling;
     part.law = ContactLaw::sliding;
     part.reference_world = horizontal_unit(angle);
     ++counters_.extra_solves;
-    const PlaneContactForces f = solve(trial, k);
+    return solve(trial, k);
+  };
+  auto residual = [&](double angle, double* along, double* normal) {
+    const PlaneContactForces f = trial_forces(angle);
     const Vector3 acc = tangential ? f.slip_acceleration_world
                                    : Vector3(f.angular_acceleration_world.x(),
                                              f.angular_acceleration_world.y(), 0.0);
-    const Vector3 s = part.reference_world;
+    const Vector3 s = horizontal_unit(angle);
     if (along) *along = s.dot(acc);
+    if (normal) *normal = f.normal_force_n;
     return s.x() * acc.y() - s.y() * acc.x();
   };
+  // The zero of the full residual in a bracket, with s . acceleration there.
+  auto refine = [&](double lo, double hi, double g_lo, double g_hi, double* along) {
+    boost::uintmax_t iterations = 60;
+    const auto bracket = boost::math::tools::toms748_solve(
+        [&](double a) { return residual(a, nullptr, nullptr); }, lo, hi, g_lo, g_hi,
+        [](double a, double b) { return std::abs(b - a) <= 1e-13; }, iterations);
+    const double root = 0.5 * (bracket.first + bracket.second);
+    residual(root, along, nullptr);
+    return root;
+  };
+
+  std::optional<TrigPolynomial2> fit = fitted_residual(residual);
+  if (fit) {
+    // Candidates: sign changes of the fitted residual, nearest the hint first.
+    struct Candidate {
+      double angle, alignment;
+    };
+    std::array<Candidate, kFitGrid> candidates;
+    int count = 0;
+    const GridTable& grid = grid_table();
+    double previous = fit->at(grid.c[0], grid.s[0]);
+    for (int i = 1; i <= kFitGrid; ++i) {
+      const double angle = 2.0 * M_PI * i / kFitGrid;
+      const double value = fit->at(grid.c[i], grid.s[i]);
+      if ((previous <= 0.0) != (value <= 0.0) && count < kFitGrid) {
+        boost::uintmax_t iterations = 60;
+        const double lo = 2.0 * M_PI * (i - 1) / kFitGrid;
+        const auto bracket = boost::math::tools::toms748_solve(
+            [&](double a) { return fit->at(a); }, lo, angle, previous, value,
+            [](double a, double b) { return std::abs(b - a) <= 1e-15; }, iterations);
+        const double root = 0.5 * (bracket.first + bracket.second);
+        candidates[count++] = {root, horizontal_unit(root).dot(hint)};
+      }
+      previous = value;
+    }
+    std::sort(candidates.begin(), candidates.begin() + count,
+              [](const Candidate& a, const Candidate& b) { return a.alignment > b.alignment; });
+    for (int c = 0; c < count && fit; ++c) {
+      // A bracket of the full residual around the fitted zero, widened until it holds.
+      double half = 1e-9;
+      for (; half <= 1e-2; half *= 10.0) {
+        const double lo = candidates[c].angle - half, hi = candidates[c].angle + half;
+        const double g_lo = residual(lo, nullptr, nullptr), g_hi = residual(hi, nullptr, nullptr);
+        if ((g_lo <= 0.0) == (g_hi <= 0.0)) continue;
+        double along = 0.0;
+        const double root = refine(lo, hi, g_lo, g_hi, &along);
+        if (along > 0.0) return horizontal_unit(root);
+        break;
+      }
+      if (half > 1e-2) fit.reset();  // the fit misplaced a zero: scan instead
+    }
+    if (fit) return hint;  // no consistent direction: the hint, as the scan gives
+  }
+
   Vector3 best = hint;
   double best_alignment = -2.0;
   double previous_angle = 0.0;
-  double previous = residual(previous_angle, nullptr);
+  double previous = residual(previous_angle, nullptr, nullptr);
   for (int i = 1; i <= kReleaseDirections; ++i) {
     const double angle = 2.0 * M_PI * i / kReleaseDirections;
-    const double value = residual(angle, nullptr);
+    const double value = residual(angle, nullptr, nullptr);
     if ((previous <= 0.0) != (value <= 0.0)) {
-      boost::uintmax_t iterations = 60;
-      const auto bracket = boost::math::tools::toms748_solve(
-          [&](double a) { return residual(a, nullptr); }, previous_angle, angle, previous, value,
-          [](double a, double b) { return std::abs(b - a) <= 1e-13; }, iterations);
-      const double root = 0.5 * (bracket.first + bracket.second);
       double along = 0.0;
-      residual(root, &along);
+      const double root = refine(previous_angle, angle, previous, value, &along);
       const Vector3 s = horizontal_unit(root);
       if (along > 0.0 && s.dot(hint) > best_alignment) {
         best_alignment = s.dot(hint);

@@ -58,6 +58,7 @@ void PlaneContact::Impl::push_point(double t) {
   point.energy_begin = energy_cap_;
   point.mode = mode_;
   point.point = true;
+  point.closed_form = false;
   point.h = 0.0;
   point.dense_ready = false;
   point.y0 = y_;
@@ -129,6 +130,7 @@ void PlaneContact::Impl::refresh_references() {
 
 void PlaneContact::Impl::take_step() {
   refresh_references();
+  if (flat_closed_form()) return;
   if (!rates_ready_) {
     laws_.rhs(mode_, y_, rates_);
     rates_ready_ = true;
@@ -154,6 +156,7 @@ void PlaneContact::Impl::step_in(Segment& segment) {
   const PlaneContactMode& mode = mode_;
   auto f = [&laws, &mode](double /*t*/, const State& y, State& dydt) { laws.rhs(mode, y, dydt); };
   segment.point = false;
+  segment.closed_form = false;
   segment.dense_ready = false;
   segment.mode = mode_;
   segment.energy_begin = energy_cap_;
@@ -253,8 +256,143 @@ void PlaneContact::Impl::step_in(Segment& segment) {
   g_start_ = g_end;
 }
 
+bool PlaneContact::Impl::flat_closed_form() {
+  // A stone lying flat on a cap (axis exactly vertical) with its rolling stuck and gravity
+  // along -z: the contact point is the pole, straight below G, so N = m g, the friction
+  // -mu m g v/|v| at the pole slides G in a straight line at constant deceleration mu g, and the
+  // spinning couple -l_s m g sign(omega_z) spins it down at l_s m g / I3; the friction's couple
+  // about G (mu m g c, horizontal) is held by the stuck rolling part, which needs it constant,
+  // so it holds throughout (the mode choice checked it where the mode began). Nothing else
+  // changes: the axis stays vertical, the pole stays the contact point. Exact to round-off up to
+  // the first of: the slip stops (|v0| / (mu g)), the spin stops (I3 |omega0| / (l_s m g)), the
+  // contact point leaves the region or the clearance reaches 0 (located on the closed form).
+  const PlaneContactSetup& setup = laws_.setup();
+  const ContactMaterial& law = setup.material;
+  if (mode_.part == LensPart::rim || mode_.rolling.law != ContactLaw::stuck ||
+      mode_.tangential.law == ContactLaw::free || mode_.spinning.law == ContactLaw::free ||
+      setup.model.kind() != MotionModelKind::rigid_body || setup.gravity_world.x() != 0.0 ||
+      setup.gravity_world.y() != 0.0 || !(setup.gravity_world.z() < 0.0)) {
+    return false;
+  }
+  const Vector3 moments = setup.model.mass_properties().principal_moments_body();
+  if (moments.x() != moments.y()) return false;  // psi is a quadrature only for I1 = I2
+  const PlaneContactKinematics k = laws_.decode(mode_, y_, false);
+  const Vector3& w = k.angular_velocity_world;
+  if (k.axis_world.x() != 0.0 || k.axis_world.y() != 0.0 || w.x() != 0.0 || w.y() != 0.0 ||
+      k.velocity_world.z() != 0.0) {
+    return false;
+  }
+  const Vector3 v(k.velocity_world.x(), k.velocity_world.y(), 0.0);
+  const double speed = v.norm(), spin = w.z();
+  const bool slides = mode_.tangential.law == ContactLaw::sliding;
+  const bool spins = mode_.spinning.law == ContactLaw::sliding;
+  if ((slides && !(speed > 0.0)) || (!slides && speed != 0.0) || (spins && !(spin != 0.0)) ||
+      (!spins && spin != 0.0) || (!slides && !spins)) {
+    return false;
+  }
+  const double g = -setup.gravity_world.z();
+  const double deceleration = slides ? law.friction * g : 0.0;  // m/s^2
+  const double spin_down =
+      spins ? law.spinning_friction_m * setup.model.mass_properties().mass() * g / moments.z()
+            : 0.0;  // rad/s^2
+  // The force solve must say the same (it is the law this closed form solves by hand): else the
+  // integrator goes on.
+  ++laws_.counters().extra_solves;
+  const PlaneContactForces f = laws_.solve(laws_.slaved(mode_, k), k);
+  const double m = setup.model.mass_properties().mass();
+  const Vector3 a_expected = slides ? Vector3(-deceleration * v / speed) : Vector3::Zero();
+  const double alpha_expected = spins ? (spin > 0.0 ? -spin_down : spin_down) : 0.0;
+  const double tolerance = 1e-9;
+  if (!(std::abs(f.normal_force_n - m * g) <= tolerance * m * g) ||
+      !((f.linear_acceleration_world - a_expected).norm() <= tolerance * g) ||
+      !(std::abs(f.angular_acceleration_world.z() - alpha_expected) <=
+        tolerance * (std::abs(alpha_expected) + g / setup.lens.half_width())) ||
+      !(f.rolling_couple_world.norm() <
+        law.rolling_resistance_m * f.normal_force_n * (1.0 - tolerance))) {
+    return false;
+  }
+
+  Segment& segment = segments_.push_back(kMaxStoredSegments);
+  if (segments_.size() == kMaxStoredSegments) {
+    window_start_ = std::max(window_start_, segments_.front().t_begin);
+  }
+  segment.point = false;
+  segment.closed_form = true;
+  segment.dense_ready = false;
+  segment.mode = mode_;
+  segment.energy_begin = energy_cap_;
+  segment.y0 = y_;
+  segment.rate.setZero();
+  segment.accel.setZero();
+  using plane_contact_detail::kPsi;
+  using plane_contact_detail::kVx;
+  using plane_contact_detail::kVy;
+  using plane_contact_detail::kWx;
+  using plane_contact_detail::kX;
+  using plane_contact_detail::kY;
+  segment.rate[kX] = v.x();
+  segment.rate[kY] = v.y();
+  segment.accel[kX] = segment.rate[kVx] = a_expected.x();
+  segment.accel[kY] = segment.rate[kVy] = a_expected.y();
+  // psi' = omega . b, b = +-e_z.
+  const double psi_sign = k.axis_world.z() > 0.0 ? 1.0 : -1.0;
+  segment.rate[kPsi] = psi_sign * spin;
+  segment.accel[kPsi] = psi_sign * alpha_expected;
+  segment.rate[kWx + 2] = alpha_expected;
+
+  // The first stop ends the piece; the region and the clearance are located on it.
+  PendingEvent first{std::numeric_limits<double>::infinity(), Trigger::tangential_zero};
+  if (slides) first = {t_ + speed / deceleration, Trigger::tangential_zero};
+  if (spins && t_ + std::abs(spin) / spin_down < first.time) {
+    first = {t_ + std::abs(spin) / spin_down, Trigger::spinning_zero};
+  }
+  segment.t_begin = t_;
+  segment.h = first.time - t_;
+  segment.t_end = first.time;
+  segment.y1 = state_in(segment, first.time);
+  if (slides) {
+    for (const Trigger trigger : {Trigger::region, Trigger::clearance}) {
+      const int i = static_cast<int>(trigger);
+      if (!g_start_.active[i]) continue;
+      auto value = [&](double t) {
+        return laws_.event_value(trigger, laws_.decode(mode_, state_in(segment, t), false), mode_);
+      };
+      // Sign changes are looked for on pieces no longer than the integrator's longest step
+      // (events are found at that resolution in integrated phases too), then bracketed.
+      const double span = first.time - t_;
+      const int pieces =
+          static_cast<int>(std::min(1e6, std::ceil(span / laws_.options().max_step_s)));
+      double lo = t_, g_lo = g_start_.g[i], hi = lo, g_hi = g_lo;
+      bool crossed = false;
+      for (int p = 1; p <= std::max(1, pieces) && g_lo > 0.0; ++p) {
+        hi = p >= pieces ? first.time : t_ + span * p / pieces;
+        g_hi = value(hi);
+        if (g_hi <= 0.0) {
+          crossed = true;
+          break;
+        }
+        lo = hi;
+        g_lo = g_hi;
+      }
+      if (!crossed) continue;
+      boost::uintmax_t iterations = 100;
+      const auto bracket =
+          boost::math::tools::toms748_solve(value, lo, hi, g_lo, g_hi, TimeTolerance(), iterations);
+      if (bracket.second < first.time) first = {bracket.second, trigger};
+    }
+  }
+  segment.t_end = first.time;
+  ++laws_.counters().steps;
+  pending_ = first;
+  return true;
+}
+
 plane_contact_detail::State PlaneContact::Impl::state_in(const Segment& segment, double t) const {
   if (segment.point || t <= segment.t_begin) return segment.y0;
+  if (segment.closed_form) {
+    const double tau = std::min(t, segment.t_begin + segment.h) - segment.t_begin;
+    return segment.y0 + tau * segment.rate + (0.5 * tau * tau) * segment.accel;
+  }
   if (t >= segment.t_begin + segment.h) return segment.y1;
   if (!segment.dense_ready) {
     // Dense output only for the steps sampled or searched: three more evaluations.

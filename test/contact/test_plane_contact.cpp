@@ -9,9 +9,12 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <array>
+#include <boost/numeric/odeint.hpp>
 #include <cmath>
 #include <functional>
 #include <iostream>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -492,6 +495,81 @@ TEST(PlaneContact, SpinOnTheFaceStopsLinearlyAtTheExactTime) {
   report_cost("spinning flat (10 rad/s)", phase.counters(), r.last.time_s);
 }
 
+TEST(PlaneContact, FlatSlideAndSpinDownWithRollingHeldIsExactAndCostsOneStepPerStop) {
+  // Flat on its face with a rolling resistance that holds the friction's couple (l_r >= mu c):
+  // G slides in a straight line at mu g and stops at v0 / (mu g) after v0^2 / (2 mu g), the spin
+  // falls at l_s m g / I3 and stops at I3 w0 / (l_s m g), then exact rest. Checked against those
+  // closed forms, against an independent integration (Boost.Odeint, Dormand-Prince 5) of the
+  // same Newton-Euler equations, and against the core's integrator on the same stone tilted by
+  // 1e-7 rad (no closed form there: the axis is not vertical).
+  const double mu = 0.3, l_r = 0.01, l_s = 15e-6, v0 = 0.3, w0 = 15.0;
+  const Vector2d dir(0.6, 0.8), xy0(0.01, 0.02);
+  const double slip_stop = v0 / (mu * kG), spin_stop = kI3 * w0 / (l_s * kM * kG);
+  const auto model = stone_model();
+  auto make = [&](double tilt) {
+    return vg::PlaneContact(
+        model, kLens, kGravity, 0.0, vg::PlaneRegion::whole_plane(), material(mu, l_r, l_s),
+        on_plane(model, tilt_about_y(tilt), xy0, v0 * dir, Vector3d(0, 0, w0)), 0.0);
+  };
+  vg::PlaneContact flat = make(0.0);
+  const Trace r = trace(flat, model, spin_stop + 1.0, 0.01);
+  ASSERT_EQ(r.events.size(), 2u);
+  EXPECT_EQ(r.events[0].event, vg::PlaneContactEvent::slip_stop);
+  EXPECT_NEAR(r.events[0].time_s, slip_stop, 1e-15);
+  EXPECT_EQ(r.last.event, vg::PlaneContactEvent::rest);
+  EXPECT_NEAR(r.last.time_s, spin_stop, 1e-12 * spin_stop);
+  const Vector2d x_end = xy0 + v0 * v0 / (2 * mu * kG) * dir;
+  EXPECT_NEAR((r.last.state.position_world.head<2>() - x_end).norm(), 0.0, 1e-15);
+  EXPECT_EQ(r.last.state.velocity_world.norm(), 0.0);
+  expect_energy_never_rises(r);
+  EXPECT_LE(flat.counters().steps, 3);  // one closed-form piece per stop
+  EXPECT_EQ(flat.counters().rhs_evaluations, 0);
+
+  // Odeint on (x, y, v_x, v_y, omega_z, psi) up to just before the slip stops.
+  using OdeState = std::array<double, 6>;
+  auto newton_euler = [&](const OdeState& y, OdeState& dy, double /*t*/) {
+    const double speed = std::hypot(y[2], y[3]);
+    dy[0] = y[2];
+    dy[1] = y[3];
+    dy[2] = -mu * kG * y[2] / speed;
+    dy[3] = -mu * kG * y[3] / speed;
+    dy[4] = -(y[4] > 0 ? 1.0 : -1.0) * l_s * kM * kG / kI3;
+    dy[5] = y[4];
+  };
+  OdeState y{xy0.x(), xy0.y(), v0 * dir.x(), v0 * dir.y(), w0, 0.0};
+  const double t_check = 0.9 * slip_stop;
+  boost::numeric::odeint::integrate_adaptive(
+      boost::numeric::odeint::make_controlled<boost::numeric::odeint::runge_kutta_dopri5<OdeState>>(
+          1e-13, 1e-13),
+      newton_euler, y, 0.0, t_check, 1e-4);
+  vg::PlaneContact flat_again = make(0.0);
+  flat_again.advance(t_check);
+  const vg::RigidBodyState s = flat_again.state_at(t_check);
+  EXPECT_NEAR(s.position_world.x(), y[0], 1e-12);
+  EXPECT_NEAR(s.position_world.y(), y[1], 1e-12);
+  EXPECT_NEAR(s.velocity_world.x(), y[2], 1e-11);
+  EXPECT_NEAR(s.velocity_world.y(), y[3], 1e-11);
+  EXPECT_NEAR(omega_of(model, s).z(), y[4], 1e-10);
+  const Vector3d e_x = s.orientation * Vector3d::UnitX();
+  EXPECT_NEAR(std::remainder(std::atan2(e_x.y(), e_x.x()) - y[5], 2 * M_PI), 0.0, 1e-10);
+
+  // The integrator on the stone tilted by 1e-7 rad: the same motion to O(1e-7).
+  vg::PlaneContact tilted = make(1e-7);
+  const Trace rt = trace(tilted, model, spin_stop + 1.0, 0.01);
+  ASSERT_GE(rt.events.size(), 2u);
+  EXPECT_EQ(rt.events[0].event, vg::PlaneContactEvent::slip_stop);
+  EXPECT_NEAR(rt.events[0].time_s, slip_stop, 1e-6 * slip_stop);
+  EXPECT_EQ(rt.last.event, vg::PlaneContactEvent::rest);
+  EXPECT_NEAR(rt.last.time_s, spin_stop, 1e-6 * spin_stop);
+  EXPECT_NEAR((rt.last.state.position_world.head<2>() - x_end).norm(), 0.0, 1e-8);
+  report("flat slide+spin: slip stop - v0/(mu g) (s)", r.events[0].time_s - slip_stop);
+  report("flat slide+spin: rest - I3 w0/(l_s m g) (s)", r.last.time_s - spin_stop);
+  report("flat slide+spin: tilted 1e-7 (integrated) rest - closed form (s)",
+         rt.last.time_s - r.last.time_s);
+  report_cost("flat slide+spin, closed form", flat.counters(), r.last.time_s);
+  report_cost("flat slide+spin tilted 1e-7, integrated", tilted.counters(), rt.last.time_s);
+}
+
 TEST(PlaneContact, RimRollingInPlaceKeepsTheCentreFixedAndTheEnergy) {
   // Omega^2 sin(alpha) = m g a / I1: 67.567078 rad/s at 75 deg, 71.357842 at 60, 75.871740 at 50.
   const auto model = stone_model();
@@ -896,6 +974,126 @@ TEST(PlaneContact, AReleasedSlipFollowsCoulombsDirectionFromItsStart) {
   report("released slip: worst angle outside it (rad)", worst_outside);
   report("released slip: integrator steps until it left the layer",
          static_cast<double>(phase.counters().steps - steps_at_release));
+}
+
+// The direction a part released from zero motion takes, found by brute force: its force at the
+// bound against s, the other parts as in `mode`; the zeros of (s x a)_z on a fine scan of the
+// circle, refined by bisection, with s . a > 0, the one nearest the hint.
+Vector3d released_direction_by_scan(const vg::PlaneContactSetup& setup, vg::PlaneContactMode mode,
+                                    const vg::PlaneContactKinematics& k, bool tangential,
+                                    const Vector3d& hint) {
+  auto residual = [&](double angle, double* along) {
+    vg::ContactLawPart& part = tangential ? mode.tangential : mode.rolling;
+    part.law = vg::ContactLaw::sliding;
+    part.reference_world = Vector3d(std::cos(angle), std::sin(angle), 0.0);
+    const vg::PlaneContactForces f = vg::solve_plane_contact(setup, mode, k);
+    Vector3d acc = tangential ? f.slip_acceleration_world : f.angular_acceleration_world;
+    acc.z() = 0.0;
+    if (along) *along = part.reference_world.dot(acc);
+    return part.reference_world.cross(acc).z();
+  };
+  const int n = 4096;
+  Vector3d best = hint;
+  double best_alignment = -2.0;
+  double previous = residual(0.0, nullptr);
+  for (int i = 1; i <= n; ++i) {
+    double lo = 2 * M_PI * (i - 1) / n, hi = 2 * M_PI * i / n;
+    const double value = residual(hi, nullptr);
+    if ((previous <= 0.0) != (value <= 0.0)) {
+      double f_lo = previous;
+      for (int j = 0; j < 100 && hi - lo > 1e-14; ++j) {
+        const double mid = 0.5 * (lo + hi);
+        const double fm = residual(mid, nullptr);
+        if ((fm <= 0.0) == (f_lo <= 0.0)) {
+          lo = mid;
+          f_lo = fm;
+        } else {
+          hi = mid;
+        }
+      }
+      double along = 0.0;
+      const double root = 0.5 * (lo + hi);
+      residual(root, &along);
+      const Vector3d s(std::cos(root), std::sin(root), 0.0);
+      if (along > 0.0 && s.dot(hint) > best_alignment) {
+        best_alignment = s.dot(hint);
+        best = s;
+      }
+    }
+    previous = value;
+  }
+  return best;
+}
+
+TEST(PlaneContact, AReleasedPartTakesTheConsistentDirectionABruteForceScanFinds) {
+  // Stones set down tilted, with their contact point and rolling still and some spin: held
+  // stuck they would need more friction or rolling couple than the law gives, so the mode
+  // choice releases the part that exceeds its bound most, in the consistent direction (the
+  // part's acceleration along it) nearest the reverse of the force it needed. That direction
+  // against a brute-force scan of 4096 directions with a force solve each.
+  const auto model = stone_model();
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  int tangential_released = 0, rolling_released = 0;
+  double worst = 0.0;
+  long most_solves = 0;
+  for (int trial = 0; trial < 60; ++trial) {
+    const double tilt = (3.0 + 84.0 * unit(rng)) * kDeg;
+    const double heading = 2 * M_PI * unit(rng);
+    const Quaterniond q = Quaterniond(Eigen::AngleAxisd(heading, Vector3d::UnitZ())) *
+                          tilt_about_y(tilt) *
+                          Quaterniond(Eigen::AngleAxisd(2 * M_PI * unit(rng), Vector3d::UnitZ()));
+    const double spin = 40.0 * (unit(rng) - 0.5);
+    const Vector3d omega(0, 0, spin);
+    const Vector3d v = -omega.cross(lowest_offset(q));  // contact point still
+    // Odd trials: a rolling resistance that holds most tilts, low friction (the slip released).
+    const vg::ContactMaterial law =
+        trial % 2 ? material(0.05, 0.02, 15e-6) : material(0.3, 5e-6, 15e-6);
+    const vg::RigidBodyState start = on_plane(model, q, Vector2d(0.01, -0.02), v.head<2>(), omega);
+    vg::PlaneContact phase(model, kLens, kGravity, 0.0, vg::PlaneRegion::whole_plane(), law, start,
+                           0.0);
+    const vg::PlaneContactMode chosen = phase.mode();
+    // The reference: every part with zero motion stuck, the worst one released.
+    const vg::PlaneContactSetup& setup = phase.setup();
+    vg::PlaneContactMode stuck;
+    stuck.part = chosen.part;
+    stuck.tangential.law = stuck.rolling.law = vg::ContactLaw::stuck;
+    stuck.spinning.law =
+        std::abs(spin) > vg::kZeroAngularSpeed ? vg::ContactLaw::sliding : vg::ContactLaw::stuck;
+    stuck.spinning.reference_world = Vector3d(0, 0, spin > 0 ? 1.0 : -1.0);
+    const vg::RigidBodyState s0 = phase.state_at(0.0);
+    const vg::PlaneContactKinematics k =
+        vg::plane_contact_kinematics(setup, stuck, s0.position_world.head<2>(), s0.orientation,
+                                     s0.velocity_world.head<2>(), omega_of(model, s0));
+    const vg::PlaneContactForces f = vg::solve_plane_contact(setup, stuck, k);
+    ASSERT_TRUE(f.solved);
+    if (f.normal_force_n <= 0.0) continue;  // lifts off at once
+    const double ratio_t = f.friction_force_world.norm() / (law.friction * f.normal_force_n);
+    const double ratio_r =
+        f.rolling_couple_world.norm() / (law.rolling_resistance_m * f.normal_force_n);
+    if (std::max(ratio_t, ratio_r) <= 1.0) continue;  // holds: nothing released
+    const bool tangential = ratio_t > ratio_r;
+    const Vector3d needed = tangential ? f.friction_force_world : f.rolling_couple_world;
+    const Vector3d expected =
+        released_direction_by_scan(setup, stuck, k, tangential, -needed.normalized());
+    const vg::ContactLawPart& part = tangential ? chosen.tangential : chosen.rolling;
+    ASSERT_EQ(part.law, vg::ContactLaw::sliding) << "trial " << trial;
+    const Vector3d got = part.reference_world.normalized();
+    const double angle = std::atan2(got.cross(expected).norm(), got.dot(expected));
+    EXPECT_LT(angle, 1e-9) << "trial " << trial << (tangential ? " tangential" : " rolling");
+    worst = std::max(worst, angle);
+    ++(tangential ? tangential_released : rolling_released);
+    // The direction is found from a fit of the residual (a handful of force solves), not by a
+    // scan of the circle with a solve per direction (64 and more).
+    EXPECT_LE(phase.counters().extra_solves, 40) << "trial " << trial;
+    most_solves = std::max(most_solves, phase.counters().extra_solves);
+  }
+  EXPECT_GE(tangential_released, 5);
+  EXPECT_GE(rolling_released, 5);
+  report("released direction: worst angle to the brute-force scan (rad)", worst);
+  report("released direction: tangential releases checked", tangential_released);
+  report("released direction: rolling releases checked", rolling_released);
+  report("released direction: most force solves to choose a mode", most_solves);
 }
 
 TEST(PlaneContact, SlidingCost) {
