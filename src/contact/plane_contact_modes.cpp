@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "plane_contact_laws.h"
+#include "virtual_go/common/validation.h"
 
 namespace virtual_go::plane_contact_detail {
 namespace {
@@ -75,17 +76,23 @@ Vector3 PlaneContactLaws::release_direction(const PlaneContactMode& mode,
     const double angle = 2.0 * M_PI * i / kReleaseDirections;
     const double value = residual(angle, nullptr);
     if ((previous <= 0.0) != (value <= 0.0)) {
-      boost::uintmax_t iterations = 60;
-      const auto bracket = boost::math::tools::toms748_solve(
-          [&](double a) { return residual(a, nullptr); }, previous_angle, angle, previous, value,
-          [](double a, double b) { return std::abs(b - a) <= 1e-13; }, iterations);
-      const double root = 0.5 * (bracket.first + bracket.second);
-      double along = 0.0;
-      residual(root, &along);
-      const Vector3 s = horizontal_unit(root);
-      if (along > 0.0 && s.dot(hint) > best_alignment) {
-        best_alignment = s.dot(hint);
-        best = s;
+      // The sign can also change across a pole of N (a direction with no consistent force,
+      // Painleve-type at large l_r); a bracket closing on it may hit the singular direction
+      // itself, which is no candidate.
+      try {
+        boost::uintmax_t iterations = 60;
+        const auto bracket = boost::math::tools::toms748_solve(
+            [&](double a) { return residual(a, nullptr); }, previous_angle, angle, previous, value,
+            [](double a, double b) { return std::abs(b - a) <= 1e-13; }, iterations);
+        const double root = 0.5 * (bracket.first + bracket.second);
+        double along = 0.0;
+        residual(root, &along);
+        const Vector3 s = horizontal_unit(root);
+        if (along > 0.0 && s.dot(hint) > best_alignment) {
+          best_alignment = s.dot(hint);
+          best = s;
+        }
+      } catch (const IntegrationError&) {
       }
     }
     previous_angle = angle;
