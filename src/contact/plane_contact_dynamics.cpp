@@ -26,14 +26,18 @@ void world_inertia(const MotionModel& model, const Eigen::Quaterniond& orientati
     // I1 1 + (I3 - I1) b b^T and 1 / I1 + (1/I3 - 1/I1) b b^T element by element: the same
     // arithmetic as the matrix expressions (I1 1 and 1 / I1 hold exactly I1, 1 / I1 and 0) without
     // their temporaries and nine divisions; this runs at every right-hand side.
+    // Symmetric: the six distinct products b_i b_j once.
     const double c = moments.z() - moments.x();
     const double inverse_1 = 1.0 / moments.x();
     const double c_inverse = 1.0 / moments.z() - inverse_1;
     for (int i = 0; i < 3; ++i) {
-      for (int j = 0; j < 3; ++j) {
-        const double bb = axis[i] * axis[j];
-        inertia(i, j) = (i == j ? moments.x() : 0.0) + c * bb;
-        inverse(i, j) = (i == j ? inverse_1 : 0.0) + c_inverse * bb;
+      const double bb = axis[i] * axis[i];
+      inertia(i, i) = moments.x() + c * bb;
+      inverse(i, i) = inverse_1 + c_inverse * bb;
+      for (int j = i + 1; j < 3; ++j) {
+        const double bij = axis[i] * axis[j];
+        inertia(i, j) = inertia(j, i) = c * bij;
+        inverse(i, j) = inverse(j, i) = c_inverse * bij;
       }
     }
     return;
@@ -43,38 +47,34 @@ void world_inertia(const MotionModel& model, const Eigen::Quaterniond& orientati
   inverse = rotation * moments.cwiseInverse().asDiagonal() * rotation.transpose();
 }
 
-// Solves a x = b for the leading n x n block (n <= 6) by Gaussian elimination with partial
-// pivoting (a few dozen operations; Eigen's decompositions of a dynamic-size block cost several
-// times the whole right-hand side here). False when a pivot falls below n eps max |a_ij|:
-// singular to working precision, the same test as Eigen's FullPivLU::isInvertible.
-bool solve_small(Eigen::Matrix<double, 6, 6>& a, Eigen::Matrix<double, 6, 1>& b, int n) {
-  double largest = 0.0;
-  for (int i = 0; i < n; ++i) {
-    for (int j = 0; j < n; ++j) largest = std::max(largest, std::abs(a(i, j)));
+// Solves the 2 x 2 system a x = b by Cramer's rule. False when the determinant is below
+// 2 eps max|a_ij|^2: singular to working precision (the scale of the pivot test of Gaussian
+// elimination with partial pivoting).
+bool solve_2x2(const Eigen::Matrix2d& a, const Eigen::Vector2d& b, Eigen::Vector2d& x) {
+  const double det = a(0, 0) * a(1, 1) - a(0, 1) * a(1, 0);
+  const double largest = a.cwiseAbs().maxCoeff();
+  if (!(std::abs(det) > 2.0 * std::numeric_limits<double>::epsilon() * largest * largest) ||
+      !std::isfinite(det)) {
+    return false;
   }
-  const double threshold = n * std::numeric_limits<double>::epsilon() * largest;
-  if (!(largest > 0.0) || !std::isfinite(largest)) return false;
-  for (int col = 0; col < n; ++col) {
-    int pivot = col;
-    for (int i = col + 1; i < n; ++i) {
-      if (std::abs(a(i, col)) > std::abs(a(pivot, col))) pivot = i;
-    }
-    if (!(std::abs(a(pivot, col)) > threshold)) return false;
-    if (pivot != col) {
-      a.row(pivot).swap(a.row(col));
-      std::swap(b(pivot), b(col));
-    }
-    for (int i = col + 1; i < n; ++i) {
-      const double factor = a(i, col) / a(col, col);
-      for (int j = col + 1; j < n; ++j) a(i, j) -= factor * a(col, j);
-      b(i) -= factor * b(col);
-    }
+  x = Eigen::Vector2d(a(1, 1) * b(0) - a(0, 1) * b(1), a(0, 0) * b(1) - a(1, 0) * b(0)) / det;
+  return true;
+}
+
+// The same for 3 x 3 (cofactors; 3 eps max|a_ij|^3).
+bool solve_3x3(const Eigen::Matrix3d& a, const Eigen::Vector3d& b, Eigen::Vector3d& x) {
+  Eigen::Matrix3d adjugate;
+  adjugate.row(0) = a.col(1).cross(a.col(2));
+  adjugate.row(1) = a.col(2).cross(a.col(0));
+  adjugate.row(2) = a.col(0).cross(a.col(1));
+  const double det = adjugate.row(0).dot(a.col(0));
+  const double largest = a.cwiseAbs().maxCoeff();
+  if (!(std::abs(det) >
+        3.0 * std::numeric_limits<double>::epsilon() * largest * largest * largest) ||
+      !std::isfinite(det)) {
+    return false;
   }
-  for (int i = n - 1; i >= 0; --i) {
-    double sum = b(i);
-    for (int j = i + 1; j < n; ++j) sum -= a(i, j) * b(j);
-    b(i) = sum / a(i, i);
-  }
+  x = adjugate * b / det;
   return true;
 }
 
@@ -112,6 +112,7 @@ PlaneContactKinematics plane_contact_kinematics(const PlaneContactSetup& setup,
                                                 const Eigen::Vector2d& velocity_xy_world,
                                                 const Eigen::Vector3d& angular_velocity_world) {
   PlaneContactKinematics k;
+  // One division, not four.
   k.orientation = orientation.normalized();
   const Eigen::Quaterniond& q = k.orientation;
   // b = R(q) e_z without the whole rotation matrix.
@@ -124,9 +125,10 @@ PlaneContactKinematics plane_contact_kinematics(const PlaneContactSetup& setup,
     k.angular_velocity_world.y() = 0.0;
   }
   if (mode.spinning.law == ContactLaw::stuck) k.angular_velocity_world.z() = 0.0;
-  k.offset_world = plane_contact_offset_world(setup.lens, mode.part, k.axis_world);
-  k.offset_rate_world = plane_contact_offset_rate_world(setup.lens, mode.part, k.axis_world,
-                                                        k.angular_velocity_world);
+  const PlaneContactOffset offset = plane_contact_offset_and_rate_world(
+      setup.lens, mode.part, k.axis_world, k.angular_velocity_world);
+  k.offset_world = offset.offset_world;
+  k.offset_rate_world = offset.offset_rate_world;
   k.position_world = Vector3(position_xy_world.x(), position_xy_world.y(),
                              setup.plane_height_m - k.offset_world.z());
   // The material point at P: u = v_G + omega x r; u_z = 0 always, u_t = 0 when stuck.
@@ -143,136 +145,137 @@ PlaneContactKinematics plane_contact_kinematics(const PlaneContactSetup& setup,
 
 PlaneContactForces solve_plane_contact(const PlaneContactSetup& setup, const PlaneContactMode& mode,
                                        const PlaneContactKinematics& k) {
+  // Each mode's multipliers in closed form (docs/physics.md, "Sustained contact"). With F the
+  // force at P and C the couple,
+  //   a = g + F / m,   I_w alpha = r x F + C - gamma,   gamma = omega x I_w omega,
+  //   p = a + alpha x r + omega x dr/dt = q + F / m + alpha x r,   q = g + omega x dr/dt,
+  // p the acceleration of the material point at P. Always p_z = 0, and p_z = q_z + F_z / m +
+  // w . alpha with w = r x e_z. A sliding or free part is N times a known vector; a stuck part
+  // is unknown but fixes its motion's rate. Eliminating what the stuck parts fix leaves at most a
+  // 3 x 3 system (slip stuck, both rotations moving), else 2 x 2, a scalar, or nothing.
   const double m = setup.model.mass_properties().mass();
   const ContactMaterial& law = setup.material;
   const Vector3& r = k.offset_world;
   const Vector3& w = k.angular_velocity_world;
+  const Eigen::Matrix3d& inertia = k.inertia_world;
   const Eigen::Matrix3d& inverse_inertia = k.inverse_inertia_world;
-  const Vector3 ez = Vector3::UnitZ();
-  const Vector3 w_cross_r_dot = w.cross(k.offset_rate_world);
+  const Vector3 q = setup.gravity_world + w.cross(k.offset_rate_world);
+  const Vector3 gamma = w.cross(inertia * w);
+  const Vector3 r_cross_ez(r.y(), -r.x(), 0.0);
 
-  // Every unknown multiplier is a generalized force: a force at P and a couple. Its response is
-  // the acceleration of G, the angular acceleration, and the acceleration of the material point at
-  // P, p = a + alpha x r. Every constraint row is one component of p (the normal velocity at P,
-  // stuck slip) or of alpha (stuck rolling and spinning), so the matrix is read off the responses.
-  struct Response {
-    Vector3 a, alpha, p;
-  };
-  // The response to a moment about G (r x force + couple) with the acceleration of G given.
-  auto respond_to = [&](const Vector3& a, const Vector3& moment) {
-    Response c;
-    c.a = a;
-    c.alpha = inverse_inertia * moment;
-    c.p = c.a + c.alpha.cross(r);
-    return c;
-  };
-  auto respond = [&](const Vector3& force, const Vector3& couple) {
-    return respond_to(force / m, r.cross(force) + couple);
-  };
-  // The unit columns without their divisions by m and products with zero: e_i / m is 1 / m and
-  // +0, and r x 0 + couple is the couple, so the values are those of respond() bit for bit.
-  const double unit_over_mass = 1.0 / m;
-  auto respond_unit_force = [&](int axis) {
-    Vector3 a = Vector3::Zero();
-    a[axis] = unit_over_mass;
-    return respond_to(a, r.cross(Vector3::Unit(axis)) + Vector3::Zero());
-  };
-  auto respond_couple = [&](const Vector3& couple) { return respond_to(Vector3::Zero(), couple); };
-  // Without contact: gravity and the gyroscopic term; p also carries omega x dr/dt.
-  Response free;
-  free.a = setup.gravity_world;
-  free.alpha = -inverse_inertia * w.cross(k.inertia_world * w);
-  free.p = free.a + free.alpha.cross(r) + w_cross_r_dot;
-
-  // The normal force's column carries the sliding parts, which are proportional to N.
-  Vector3 tangential_direction = Vector3::Zero(), rolling_direction = Vector3::Zero();
-  double spin_sign = 0.0;
-  Vector3 normal_force = ez, normal_couple = Vector3::Zero();
-  if (mode.tangential.law == ContactLaw::sliding) {
-    tangential_direction = law_direction(mode.tangential, k.slip_velocity(), kSlipDirectionLayer);
-    normal_force -= law.friction * tangential_direction;
-  }
-  if (mode.rolling.law == ContactLaw::sliding) {
-    rolling_direction = law_direction(mode.rolling, k.rolling_velocity(), kRollDirectionLayer);
-    normal_couple -= law.rolling_resistance_m * rolling_direction;
-  }
-  if (mode.spinning.law == ContactLaw::sliding) {
-    spin_sign = mode.spinning.reference_world.z() < 0.0 ? -1.0 : 1.0;
-    normal_couple.z() -= law.spinning_friction_m * spin_sign;
-  }
-
-  // Rows (component `axis` of p, or of alpha when `angular`) and their columns.
-  struct Row {
-    bool angular;
-    int axis;
-  };
-  Row rows[6];
-  Response columns[6];
-  int n = 0;
-  rows[n] = {false, 2};
-  columns[n++] = respond(normal_force, normal_couple);
   const bool tangential_stuck = mode.tangential.law == ContactLaw::stuck;
   const bool rolling_stuck = mode.rolling.law == ContactLaw::stuck;
   const bool spinning_stuck = mode.spinning.law == ContactLaw::stuck;
-  if (tangential_stuck) {
-    for (int axis = 0; axis < 2; ++axis) {
-      rows[n] = {false, axis};
-      columns[n++] = respond_unit_force(axis);
-    }
+  // The sliding parts per unit N: force f_t at P, couple c (rolling across, spinning along e_z).
+  Vector3 tangential_direction = Vector3::Zero(), rolling_direction = Vector3::Zero();
+  double spin_sign = 0.0;
+  Vector3 force_per_normal = Vector3::UnitZ(), couple_per_normal = Vector3::Zero();
+  if (mode.tangential.law == ContactLaw::sliding) {
+    tangential_direction = law_direction(mode.tangential, k.slip_velocity(), kSlipDirectionLayer);
+    force_per_normal.x() -= law.friction * tangential_direction.x();
+    force_per_normal.y() -= law.friction * tangential_direction.y();
   }
-  if (rolling_stuck) {
-    for (int axis = 0; axis < 2; ++axis) {
-      rows[n] = {true, axis};
-      columns[n++] = respond_couple(Vector3::Unit(axis));
-    }
+  if (mode.rolling.law == ContactLaw::sliding) {
+    rolling_direction = law_direction(mode.rolling, k.rolling_velocity(), kRollDirectionLayer);
+    couple_per_normal.x() = -law.rolling_resistance_m * rolling_direction.x();
+    couple_per_normal.y() = -law.rolling_resistance_m * rolling_direction.y();
   }
-  if (spinning_stuck) {
-    rows[n] = {true, 2};
-    columns[n++] = respond_couple(ez);
+  if (mode.spinning.law == ContactLaw::sliding) {
+    spin_sign = mode.spinning.reference_world.z() < 0.0 ? -1.0 : 1.0;
+    couple_per_normal.z() = -law.spinning_friction_m * spin_sign;
   }
-  auto component = [](const Row& row, const Response& c) {
-    return row.angular ? c.alpha[row.axis] : c.p[row.axis];
-  };
-  Eigen::Matrix<double, 6, 6> a;
-  Eigen::Matrix<double, 6, 1> lambda;
-  for (int i = 0; i < n; ++i) {
-    lambda(i) = -component(rows[i], free);
-    for (int j = 0; j < n; ++j) a(i, j) = component(rows[i], columns[j]);
-  }
-  PlaneContactForces f;
-  if (!solve_small(a, lambda, n)) return f;
-  if (!lambda.head(n).allFinite()) return f;
-  f.solved = true;
 
-  Vector3 p = free.p;
-  f.linear_acceleration_world = free.a;
-  f.angular_acceleration_world = free.alpha;
-  for (int j = 0; j < n; ++j) {
-    f.linear_acceleration_world += lambda(j) * columns[j].a;
-    f.angular_acceleration_world += lambda(j) * columns[j].alpha;
-    p += lambda(j) * columns[j].p;
-  }
-  const double normal = lambda(0);
-  f.normal_force_n = normal;
-  int next = 1;
+  PlaneContactForces f;
+  Vector3 force, couple, alpha;
   if (tangential_stuck) {
-    f.friction_force_world = Vector3(lambda(next), lambda(next + 1), 0.0);
-    next += 2;
-  } else if (mode.tangential.law == ContactLaw::sliding) {
-    f.friction_force_world = -law.friction * normal * tangential_direction;
+    // p = 0: F = -m (q + alpha x r), so N = -m (q_z + w . alpha) and, with
+    // r x (alpha x r) = S alpha, S = |r|^2 1 - r r^T, the moment balance about P:
+    //   J alpha = h + C,   J = I_w + m S,   h = -m r x q - gamma.
+    const Eigen::Matrix3d inertia_about_p =
+        inertia + m * (r.squaredNorm() * Eigen::Matrix3d::Identity() - r * r.transpose());
+    const Vector3 h = -m * r.cross(q) - gamma;
+    const double normal_without_alpha = -m * q.z();
+    if (rolling_stuck && spinning_stuck) {
+      alpha.setZero();
+      couple = -h;
+    } else if (rolling_stuck) {
+      // alpha = alpha_z e_z, w . alpha = 0: N is known; the z row gives alpha_z, the others C_t.
+      const double normal = normal_without_alpha;
+      alpha = Vector3(0.0, 0.0, (h.z() + normal * couple_per_normal.z()) / inertia_about_p(2, 2));
+      couple = inertia_about_p.col(2) * alpha.z() - h;
+      couple.z() = normal * couple_per_normal.z();
+    } else if (spinning_stuck) {
+      // alpha_z = 0: the x, y rows with N = -m (q_z + w_t . alpha_t); the z row gives C_z.
+      const Eigen::Vector2d c_t = couple_per_normal.head<2>();
+      const Eigen::Matrix2d a =
+          inertia_about_p.topLeftCorner<2, 2>() + m * c_t * r_cross_ez.head<2>().transpose();
+      Eigen::Vector2d alpha_t;
+      if (!solve_2x2(a, h.head<2>() + normal_without_alpha * c_t, alpha_t)) return f;
+      alpha = Vector3(alpha_t.x(), alpha_t.y(), 0.0);
+      const double normal = normal_without_alpha - m * r_cross_ez.dot(alpha);
+      couple =
+          Vector3(normal * c_t.x(), normal * c_t.y(), inertia_about_p.row(2).dot(alpha) - h.z());
+    } else {
+      // (J + m c w^T) alpha = h - m q_z c: N's couple c depends on alpha through N.
+      const Eigen::Matrix3d a = inertia_about_p + m * couple_per_normal * r_cross_ez.transpose();
+      if (!solve_3x3(a, h + normal_without_alpha * couple_per_normal, alpha)) return f;
+      couple = (normal_without_alpha - m * r_cross_ez.dot(alpha)) * couple_per_normal;
+    }
+    force = -m * (q + alpha.cross(r));
+  } else {
+    // F = N f, f = e_z + f_t: the moment per unit N is r x f + c.
+    const Vector3 moment_per_normal = r.cross(force_per_normal) + couple_per_normal;
+    double normal = 0.0;
+    if (rolling_stuck && spinning_stuck) {
+      // alpha = 0: p_z = 0 gives N; C balances the rest.
+      alpha.setZero();
+      normal = -m * q.z();
+      couple = gamma - normal * r.cross(force_per_normal);
+    } else if (rolling_stuck) {
+      // alpha = alpha_z e_z, w . alpha = 0: N from p_z = 0; the z row gives alpha_z, the others
+      // C_t.
+      normal = -m * q.z();
+      alpha = Vector3(0.0, 0.0, (normal * moment_per_normal.z() - gamma.z()) / inertia(2, 2));
+      couple = inertia.col(2) * alpha.z() - normal * r.cross(force_per_normal) + gamma;
+      couple.z() = normal * couple_per_normal.z();
+    } else {
+      // alpha = alpha_0 + N beta (+ C_z W e_z when spinning is stuck).
+      const Vector3 alpha_free = -(inverse_inertia * gamma);
+      const Vector3 beta = inverse_inertia * moment_per_normal;
+      const double p_z_free = q.z() + r_cross_ez.dot(alpha_free);
+      const double p_z_per_normal = 1.0 / m + r_cross_ez.dot(beta);
+      if (spinning_stuck) {
+        // Unknowns N and C_z: alpha_z = 0 and p_z = 0.
+        const Vector3 spin_column = inverse_inertia.col(2);
+        Eigen::Matrix2d a;
+        a << p_z_per_normal, r_cross_ez.dot(spin_column), beta.z(), spin_column.z();
+        Eigen::Vector2d unknowns;
+        if (!solve_2x2(a, Eigen::Vector2d(-p_z_free, -alpha_free.z()), unknowns)) return f;
+        normal = unknowns(0);
+        alpha = alpha_free + normal * beta + unknowns(1) * spin_column;
+        alpha.z() = 0.0;
+        couple = normal * couple_per_normal;
+        couple.z() = unknowns(1);
+      } else {
+        // A scalar: N p_z_per_normal = -p_z_free.
+        if (!(p_z_per_normal != 0.0) || !std::isfinite(p_z_per_normal)) return f;
+        normal = -p_z_free / p_z_per_normal;
+        alpha = alpha_free + normal * beta;
+        couple = normal * couple_per_normal;
+      }
+    }
+    force = normal * force_per_normal;
   }
-  if (rolling_stuck) {
-    f.rolling_couple_world = Vector3(lambda(next), lambda(next + 1), 0.0);
-    next += 2;
-  } else if (mode.rolling.law == ContactLaw::sliding) {
-    f.rolling_couple_world = -law.rolling_resistance_m * normal * rolling_direction;
-  }
-  if (spinning_stuck) {
-    f.spinning_couple_nm = lambda(next);
-  } else if (mode.spinning.law == ContactLaw::sliding) {
-    f.spinning_couple_nm = -law.spinning_friction_m * normal * spin_sign;
-  }
+  if (!force.allFinite() || !couple.allFinite() || !alpha.allFinite()) return f;
+  f.solved = true;
+  f.normal_force_n = force.z();
+  f.friction_force_world = Vector3(force.x(), force.y(), 0.0);
+  f.rolling_couple_world = Vector3(couple.x(), couple.y(), 0.0);
+  f.spinning_couple_nm = couple.z();
+  f.linear_acceleration_world = setup.gravity_world + force / m;
+  f.angular_acceleration_world = alpha;
   // d/dt of the slip velocity: the material point's acceleration, horizontal.
+  const Vector3 p = q + force / m + alpha.cross(r);
   f.slip_acceleration_world = Vector3(p.x(), p.y(), 0.0);
   return f;
 }

@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "plane_contact_laws.h"
+#include "virtual_go/common/validation.h"
 
 namespace virtual_go::plane_contact_detail {
 namespace {
@@ -156,47 +157,56 @@ Vector3 PlaneContactLaws::release_direction(const PlaneContactMode& mode,
     return root;
   };
 
-  std::optional<TrigPolynomial2> fit = fitted_residual(residual);
+  // A trial direction on a pole of N (see the scan below) makes the fit or its refinement throw:
+  // then the scan decides, skipping that bracket.
+  std::optional<TrigPolynomial2> fit;
+  try {
+    fit = fitted_residual(residual);
+  } catch (const IntegrationError&) {
+  }
   if (fit) {
-    // Candidates: sign changes of the fitted residual, nearest the hint first.
-    struct Candidate {
-      double angle, alignment;
-    };
-    std::array<Candidate, kFitGrid> candidates;
-    int count = 0;
-    const GridTable& grid = grid_table();
-    double previous = fit->at(grid.c[0], grid.s[0]);
-    for (int i = 1; i <= kFitGrid; ++i) {
-      const double angle = 2.0 * M_PI * i / kFitGrid;
-      const double value = fit->at(grid.c[i], grid.s[i]);
-      if ((previous <= 0.0) != (value <= 0.0) && count < kFitGrid) {
-        boost::uintmax_t iterations = 60;
-        const double lo = 2.0 * M_PI * (i - 1) / kFitGrid;
-        const auto bracket = boost::math::tools::toms748_solve(
-            [&](double a) { return fit->at(a); }, lo, angle, previous, value,
-            [](double a, double b) { return std::abs(b - a) <= 1e-15; }, iterations);
-        const double root = 0.5 * (bracket.first + bracket.second);
-        candidates[count++] = {root, horizontal_unit(root).dot(hint)};
+    try {
+      // Candidates: sign changes of the fitted residual, nearest the hint first.
+      struct Candidate {
+        double angle, alignment;
+      };
+      std::array<Candidate, kFitGrid> candidates;
+      int count = 0;
+      const GridTable& grid = grid_table();
+      double previous = fit->at(grid.c[0], grid.s[0]);
+      for (int i = 1; i <= kFitGrid; ++i) {
+        const double angle = 2.0 * M_PI * i / kFitGrid;
+        const double value = fit->at(grid.c[i], grid.s[i]);
+        if ((previous <= 0.0) != (value <= 0.0) && count < kFitGrid) {
+          boost::uintmax_t iterations = 60;
+          const double lo = 2.0 * M_PI * (i - 1) / kFitGrid;
+          const auto bracket = boost::math::tools::toms748_solve(
+              [&](double a) { return fit->at(a); }, lo, angle, previous, value,
+              [](double a, double b) { return std::abs(b - a) <= 1e-15; }, iterations);
+          const double root = 0.5 * (bracket.first + bracket.second);
+          candidates[count++] = {root, horizontal_unit(root).dot(hint)};
+        }
+        previous = value;
       }
-      previous = value;
-    }
-    std::sort(candidates.begin(), candidates.begin() + count,
-              [](const Candidate& a, const Candidate& b) { return a.alignment > b.alignment; });
-    for (int c = 0; c < count && fit; ++c) {
-      // A bracket of the full residual around the fitted zero, widened until it holds.
-      double half = 1e-9;
-      for (; half <= 1e-2; half *= 10.0) {
-        const double lo = candidates[c].angle - half, hi = candidates[c].angle + half;
-        const double g_lo = residual(lo, nullptr, nullptr), g_hi = residual(hi, nullptr, nullptr);
-        if ((g_lo <= 0.0) == (g_hi <= 0.0)) continue;
-        double along = 0.0;
-        const double root = refine(lo, hi, g_lo, g_hi, &along);
-        if (along > 0.0) return horizontal_unit(root);
-        break;
+      std::sort(candidates.begin(), candidates.begin() + count,
+                [](const Candidate& a, const Candidate& b) { return a.alignment > b.alignment; });
+      for (int c = 0; c < count && fit; ++c) {
+        // A bracket of the full residual around the fitted zero, widened until it holds.
+        double half = 1e-9;
+        for (; half <= 1e-2; half *= 10.0) {
+          const double lo = candidates[c].angle - half, hi = candidates[c].angle + half;
+          const double g_lo = residual(lo, nullptr, nullptr), g_hi = residual(hi, nullptr, nullptr);
+          if ((g_lo <= 0.0) == (g_hi <= 0.0)) continue;
+          double along = 0.0;
+          const double root = refine(lo, hi, g_lo, g_hi, &along);
+          if (along > 0.0) return horizontal_unit(root);
+          break;
+        }
+        if (half > 1e-2) fit.reset();  // the fit misplaced a zero: scan instead
       }
-      if (half > 1e-2) fit.reset();  // the fit misplaced a zero: scan instead
+      if (fit) return hint;  // no consistent direction: the hint, as the scan gives
+    } catch (const IntegrationError&) {
     }
-    if (fit) return hint;  // no consistent direction: the hint, as the scan gives
   }
 
   Vector3 best = hint;
@@ -207,12 +217,18 @@ Vector3 PlaneContactLaws::release_direction(const PlaneContactMode& mode,
     const double angle = 2.0 * M_PI * i / kReleaseDirections;
     const double value = residual(angle, nullptr, nullptr);
     if ((previous <= 0.0) != (value <= 0.0)) {
-      double along = 0.0;
-      const double root = refine(previous_angle, angle, previous, value, &along);
-      const Vector3 s = horizontal_unit(root);
-      if (along > 0.0 && s.dot(hint) > best_alignment) {
-        best_alignment = s.dot(hint);
-        best = s;
+      // The sign can also change across a pole of N (a direction with no consistent force,
+      // Painleve-type at large l_r); a bracket closing on it may hit the singular direction
+      // itself, which is no candidate.
+      try {
+        double along = 0.0;
+        const double root = refine(previous_angle, angle, previous, value, &along);
+        const Vector3 s = horizontal_unit(root);
+        if (along > 0.0 && s.dot(hint) > best_alignment) {
+          best_alignment = s.dot(hint);
+          best = s;
+        }
+      } catch (const IntegrationError&) {
       }
     }
     previous_angle = angle;

@@ -57,7 +57,10 @@ void PlaneContactLaws::rhs(const PlaneContactMode& mode, const State& y, State& 
   // psi is 0 at a step's start and only an axisymmetric stone moves it, so q~ alone is the
   // orientation the forces need.
   const PlaneContactKinematics k = decode(mode, y, false);
-  const PlaneContactForces f = solve(slaved(mode, k), k);
+  // The mode is copied only when a part is slaved (rare: inside the direction layer).
+  const bool any_slaved = (mode.tangential.slaved && mode.tangential.law == ContactLaw::sliding) ||
+                          (mode.rolling.slaved && mode.rolling.law == ContactLaw::sliding);
+  const PlaneContactForces f = any_slaved ? solve(slaved(mode, k), k) : solve(mode, k);
   const Vector3& v = k.velocity_world;
   const Vector3& w = k.angular_velocity_world;
   dydt[kX] = v.x();

@@ -5,11 +5,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <random>
 
+#include "virtual_go/body/mass_properties.h"
 #include "virtual_go/contact/lens_on_plane.h"
 #include "virtual_go/contact/plane_contact_dynamics.h"
-#include "virtual_go/body/mass_properties.h"
 
 namespace vg = virtual_go;
 using Eigen::Vector2d;
@@ -217,4 +218,80 @@ TEST(PlaneContactDynamics, ConstraintsHoldAtTheAccelerationLevel) {
   EXPECT_LT(worst_gap, 1e-12);
   EXPECT_LT(worst_slip, 1e-7);
   EXPECT_LT(worst_spin, 1e-9);
+}
+
+TEST(PlaneContactDynamics, ForcesSatisfyNewtonEulerTheConstraintsAndTheLawsInEveryMode) {
+  // The defining equations, checked one by one on random states of caps and rim in all 27 modes
+  // (together they fix the solution): m a = m g + F and I_w alpha + omega x I_w omega = r x F + C
+  // from the reported forces; the gap's acceleration p_z = 0, p_t = 0 when the slip is stuck,
+  // alpha_t = 0 and alpha_z = 0 when rolling and spinning are stuck (p = a + alpha x r +
+  // omega x dr/dt); sliding parts at their bound against the law's direction, free parts zero.
+  const double mu = 0.4, l_r = 20e-6, l_s = 30e-6;
+  const auto setup = make_setup(mu, l_r, l_s);
+  const double m = kMass.mass();
+  std::mt19937 rng(29);
+  std::normal_distribution<double> n;
+  double worst_motion = 0.0, worst_constraint = 0.0, worst_law = 0.0;
+  for (int i = 0; i < 2700; ++i) {
+    const Eigen::Quaterniond q = Eigen::Quaterniond(n(rng), n(rng), n(rng), n(rng)).normalized();
+    const Vector3d b = q * Vector3d::UnitZ();
+    const vg::ContactLaw laws[3] = {vg::ContactLaw::free, vg::ContactLaw::sliding,
+                                    vg::ContactLaw::stuck};
+    auto mode = mode_of(setup.lens.part_towards_plane(b.z()), laws[i % 3], laws[(i / 3) % 3],
+                        laws[(i / 9) % 3]);
+    const Vector2d v(0.3 * n(rng), 0.3 * n(rng));
+    const Vector3d omega(20 * n(rng), 20 * n(rng), 20 * n(rng));
+    const auto k0 = vg::plane_contact_kinematics(setup, mode, Vector2d::Zero(), q, v, omega);
+    mode.tangential.reference_world = k0.slip_velocity().normalized();
+    mode.rolling.reference_world = k0.rolling_velocity().normalized();
+    mode.spinning.reference_world = Vector3d(0, 0, k0.spin_velocity() > 0 ? 1 : -1);
+    const auto k = vg::plane_contact_kinematics(setup, mode, Vector2d::Zero(), q, v, omega);
+    const auto f = vg::solve_plane_contact(setup, mode, k);
+    ASSERT_TRUE(f.solved);
+    const Vector3d& w = k.angular_velocity_world;
+    const Vector3d& r = k.offset_world;
+    const double nf = f.normal_force_n;
+    const Vector3d force = nf * Vector3d::UnitZ() + f.friction_force_world;
+    const Vector3d couple = f.rolling_couple_world + f.spinning_couple_nm * Vector3d::UnitZ();
+    const Vector3d& a = f.linear_acceleration_world;
+    const Vector3d& alpha = f.angular_acceleration_world;
+    // Scales: forces by m g, moments by m g |r|, accelerations by g and g / |r|.
+    const double force_scale = m * kG + std::abs(nf), moment_scale = force_scale * 0.011;
+    worst_motion =
+        std::max(worst_motion, (m * a - m * setup.gravity_world - force).norm() / force_scale);
+    const Vector3d moment_residual =
+        k.inertia_world * alpha + w.cross(k.inertia_world * w) - r.cross(force) - couple;
+    worst_motion = std::max(worst_motion, moment_residual.norm() / moment_scale);
+    const Vector3d p = a + alpha.cross(r) + w.cross(k.offset_rate_world);
+    const double accel_scale = kG + w.squaredNorm() * 0.011;
+    worst_constraint = std::max(worst_constraint, std::abs(p.z()) / accel_scale);
+    if (mode.tangential.law == vg::ContactLaw::stuck)
+      worst_constraint = std::max(worst_constraint, p.head<2>().norm() / accel_scale);
+    if (mode.rolling.law == vg::ContactLaw::stuck)
+      worst_constraint = std::max(worst_constraint, alpha.head<2>().norm() * 0.011 / accel_scale);
+    if (mode.spinning.law == vg::ContactLaw::stuck)
+      worst_constraint = std::max(worst_constraint, std::abs(alpha.z()) * 0.011 / accel_scale);
+    // The laws: sliding opposes the motion's direction at its bound, free is zero.
+    auto law_error = [&](vg::ContactLaw law, const Vector3d& value, const Vector3d& bound_value,
+                         double scale) {
+      if (law == vg::ContactLaw::sliding) return (value - bound_value).norm() / scale;
+      if (law == vg::ContactLaw::free) return value.norm() / scale;
+      return 0.0;
+    };
+    worst_law =
+        std::max(worst_law, law_error(mode.tangential.law, f.friction_force_world,
+                                      -mu * nf * k.slip_velocity().normalized(), force_scale));
+    worst_law =
+        std::max(worst_law, law_error(mode.rolling.law, f.rolling_couple_world,
+                                      -l_r * nf * k.rolling_velocity().normalized(), moment_scale));
+    worst_law =
+        std::max(worst_law, law_error(mode.spinning.law, Vector3d(0, 0, f.spinning_couple_nm),
+                                      Vector3d(0, 0, -l_s * nf * (k.spin_velocity() > 0 ? 1 : -1)),
+                                      moment_scale));
+  }
+  std::printf("[ measured ] worst relative residual: motion %.3g, constraints %.3g, laws %.3g\n",
+              worst_motion, worst_constraint, worst_law);
+  EXPECT_LT(worst_motion, 1e-13);
+  EXPECT_LT(worst_constraint, 1e-13);
+  EXPECT_LT(worst_law, 1e-14);
 }

@@ -30,6 +30,16 @@ Eigen::Vector3d plane_contact_offset_rate_world(const LensGeometry& lens, LensPa
                                                 const Eigen::Vector3d& axis_world,
                                                 const Eigen::Vector3d& omega_world);
 
+// Both at once (the rim's direction e is found once): what the right-hand side of sustained
+// contact needs at every evaluation.
+struct PlaneContactOffset {
+  Eigen::Vector3d offset_world;       // r, m
+  Eigen::Vector3d offset_rate_world;  // dr/dt, m/s
+};
+PlaneContactOffset plane_contact_offset_and_rate_world(const LensGeometry& lens, LensPart part,
+                                                       const Eigen::Vector3d& axis_world,
+                                                       const Eigen::Vector3d& omega_world);
+
 // The part of the lens facing a horizontal plane below it, for the axis' world z component.
 inline LensPart lens_part_on_plane(const LensGeometry& lens, double axis_z) {
   return lens.part_towards_plane(axis_z);

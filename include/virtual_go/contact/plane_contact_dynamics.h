@@ -12,8 +12,9 @@
 //   N spinning friction (length l_s):   vertical angular velocity omega_z;             |tau_s| <=
 //   l_s N
 // N always keeps the contact (the second derivative of the gap is zero); N < 0 means lift-off.
-// The unknown multipliers (N and the stuck forces and couples) come from one small linear
-// system (at most 6 x 6) of the acceleration constraints: a Delassus-type solve.
+// The unknown multipliers (N and the stuck forces and couples) follow from the acceleration
+// constraints in closed form for each mode: what the stuck parts fix is eliminated, leaving a
+// scalar, a 2 x 2 or (slip stuck, both rotations moving) a 3 x 3 system.
 #pragma once
 
 #include <Eigen/Geometry>
