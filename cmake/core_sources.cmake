@@ -34,6 +34,7 @@ set(VG_CORE_SOURCES
   src/go/board_distance.cpp
   src/contact/material.cpp
   src/contact/flight_gap_bound.cpp
+  src/contact/pair_gap_bound.cpp
   src/contact/time_of_impact.cpp
   src/contact/pair_time_of_impact.cpp
   src/contact/impact.cpp

@@ -30,6 +30,7 @@ foreach(core_test
     go/test_game_replay
     contact/test_material
     contact/test_flight_gap_bound
+    contact/test_pair_gap_bound
     contact/test_time_of_impact
     contact/test_pair_time_of_impact
     contact/test_impact

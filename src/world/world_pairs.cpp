@@ -10,6 +10,7 @@
 
 #include "virtual_go/body/rigid_body.h"
 #include "virtual_go/contact/impact.h"
+#include "virtual_go/contact/pair_gap_bound.h"
 #include "virtual_go/contact/pair_impact.h"
 #include "virtual_go/geometry/lens_pair_distance.h"
 #include "virtual_go/world/broad_phase.h"
@@ -49,46 +50,103 @@ World::IslandRun* World::island_of(std::size_t i) {
   return nullptr;
 }
 
-double World::point_speed_bound(std::size_t i, double dt_s) {
+namespace {
+
+// Every surface point lies within the rim radius a of the centre: |u| <= |v| + a |omega|, and
+// with m v^2 + I_min omega^2 <= 2 K, Cauchy-Schwarz gives the largest such sum:
+// |v| + a |omega| <= sqrt(2 K (1/m + a^2/I_min)) (the two maxima added: 1.32x that).
+double point_speed_from_energy(const WorldBodyModel& body, double kinetic_j) {
+  const MassProperties& mass = body.setup().model.mass_properties();
+  const double smallest_moment = mass.principal_moments_body().minCoeff();
+  const double a = body.lens().half_width();
+  return std::sqrt(2.0 * kinetic_j * (1.0 / mass.mass() + a * a / smallest_moment));
+}
+
+}  // namespace
+
+double World::kinetic_energy_bound(std::size_t k, double dt_s) {
   // Kinetic energy <= energy - the lowest potential: a lens lies at least its half thickness c
   // (its smallest reach) above whatever supports it, the table, or the top face while it cannot
   // leave the face within dt_s even at the table floor's speed bound (gravity taken vertical, as
-  // the world's is). Energy never rises in any model, so the bound holds for the whole pass; an
-  // island's members may trade energy, so a member gets the island's.
-  const auto speed = [&](std::size_t k, double kinetic_j) {
-    const MassProperties& mass = body_at(k).setup().model.mass_properties();
-    const double smallest_moment = mass.principal_moments_body().minCoeff();
-    const double a = body_at(k).lens().half_width();
-    // Every surface point lies within the rim radius a of the centre: |u| <= |v| + a |omega|,
-    // and with m v^2 + I_min omega^2 <= 2 K, Cauchy-Schwarz gives the largest such sum:
-    // |v| + a |omega| <= sqrt(2 K (1/m + a^2/I_min)) (the two maxima added: 1.32x that).
-    return std::sqrt(2.0 * kinetic_j * (1.0 / mass.mass() + a * a / smallest_moment));
+  // the world's is). Energy never rises in any model, so the bound holds for the whole pass.
+  const MotionSetup& setup = body_at(k).setup();
+  const LensGeometry& lens = body_at(k).lens();
+  const double m = setup.model.mass_properties().mass();
+  const double thickness_half = lens.sphere_radius() - lens.sphere_offset();
+  const auto above = [&](double floor_z) {
+    return std::max(0.0, energy(k) + m * setup.gravity_world.z() * (floor_z + thickness_half));
   };
-  const auto room = [&](std::size_t k) {
-    const MotionSetup& setup = body_at(k).setup();
-    const LensGeometry& lens = body_at(k).lens();
-    const double m = setup.model.mass_properties().mass();
-    const double thickness_half = lens.sphere_radius() - lens.sphere_offset();
-    const auto above = [&](double floor_z) {
-      return std::max(0.0, energy(k) + m * setup.gravity_world.z() * (floor_z + thickness_half));
-    };
-    const double on_table = above(config_.board.table_z_m());
-    const Eigen::Vector3d& x = stones_.hot(k).state.position_world;
-    const double inside_m = std::min(0.5 * config_.board.size_x_m - std::abs(x.x()),
-                                     0.5 * config_.board.size_y_m - std::abs(x.y()));
-    const double reach_m = lens.half_width() + speed(k, on_table) * dt_s;
-    return x.z() >= config_.board.top_z_m() && inside_m > reach_m ? above(config_.board.top_z_m())
-                                                                  : on_table;
-  };
+  const double on_table = above(config_.board.table_z_m());
+  const Eigen::Vector3d& x = stones_.hot(k).state.position_world;
+  const double inside_m = std::min(0.5 * config_.board.size_x_m - std::abs(x.x()),
+                                   0.5 * config_.board.size_y_m - std::abs(x.y()));
+  const double reach_m = lens.half_width() + point_speed_from_energy(body_at(k), on_table) * dt_s;
+  return x.z() >= config_.board.top_z_m() && inside_m > reach_m ? above(config_.board.top_z_m())
+                                                                : on_table;
+}
+
+double World::point_speed_bound(std::size_t i, double dt_s) {
+  // An island's members may trade energy, so a member gets the island's.
   double kinetic_j = 0.0;
   if (IslandRun* run = island_of(i)) {
     for (std::size_t k = 0; k < run->members.size(); ++k) {
-      if (run->in[k]) kinetic_j += room(index_of(run->members[k]));
+      if (run->in[k]) kinetic_j += kinetic_energy_bound(index_of(run->members[k]), dt_s);
     }
   } else {
-    kinetic_j = room(i);
+    kinetic_j = kinetic_energy_bound(i, dt_s);
   }
-  return speed(i, kinetic_j);
+  return point_speed_from_energy(body_at(i), kinetic_j);
+}
+
+std::optional<GapBoundMotion> World::gap_bound_motion(std::size_t i, double dt_s) {
+  const StoneHot& h = stones_.hot(i);
+  if (h.mode == StoneMode::resting) return still_motion();
+  if (stones_.record(i).island) return std::nullopt;  // impulses: no force bound
+  const WorldBodyModel& body = body_at(i);
+  const MotionModel& model = body.setup().model;
+  const Eigen::Vector3d omega =
+      model.angular_velocity_world(h.state.orientation, h.state.angular_momentum_world);
+  if (h.mode == StoneMode::flight) {
+    // The pass ends at the flight's board contact (stage 1), so no impulse within it.
+    return flight_motion(model, h.state.velocity_world, omega,
+                         std::numeric_limits<double>::infinity());
+  }
+  if (h.mode != StoneMode::plane_contact) return std::nullopt;
+  // On the top face only (the table's contact may meet the board's sides: an obstacle), with
+  // gravity vertical, and while the contact point cannot leave the face.
+  const Eigen::Vector3d& g = body.setup().gravity_world;
+  const Eigen::Vector3d& x = h.state.position_world;
+  if (!(x.z() >= config_.board.top_z_m()) || g.x() != 0.0 || g.y() != 0.0) return std::nullopt;
+  const double kinetic_j = kinetic_energy_bound(i, dt_s);
+  const LensPose pose = lens_pose(h.state);
+  const std::optional<PlaneCapForceBound> cap =
+      plane_cap_force_bound(model, body.lens(), config_.board_material, -g.z(), pose.axis_world,
+                            h.state.velocity_world, omega, kinetic_j);
+  if (!cap) return std::nullopt;
+  GapBoundMotion motion = cap->motion;
+  // The contact point lies within the rim radius of the centre; it stays on the face while the
+  // centre is farther than that from the face's edges.
+  const double inside_m = std::min(0.5 * config_.board.size_x_m - std::abs(x.x()),
+                                   0.5 * config_.board.size_y_m - std::abs(x.y()));
+  const double speed = point_speed_from_energy(body, kinetic_j);
+  const double room_m = inside_m - body.lens().half_width();
+  if (!(room_m > 0.0)) return std::nullopt;
+  if (speed > 0.0) motion.valid_for_s = std::min(motion.valid_for_s, room_m / speed);
+  return motion;
+}
+
+double World::second_order_step(std::size_t i, std::size_t j, const LensPairContact& c,
+                                double dt_s) {
+  const std::optional<GapBoundMotion> mi = gap_bound_motion(i, dt_s);
+  if (!mi) return 0.0;
+  const std::optional<GapBoundMotion> mj = gap_bound_motion(j, dt_s);
+  if (!mj) return 0.0;
+  const StoneHot& hi = stones_.hot(i);
+  const StoneHot& hj = stones_.hot(j);
+  const PairGapBound bound(body_at(i).lens(), lens_pose(hi.state), *mi, body_at(j).lens(),
+                           lens_pose(hj.state), *mj, c.normal_world,
+                           body_at(j).setup().gravity_world - body_at(i).setup().gravity_world);
+  return bound.time_to(0.5 * kJoinGapM);
 }
 
 void World::enter_fallen_asleep() {
@@ -241,9 +299,15 @@ World::Interaction World::next_interaction(double t_s, long work_limit) {
         consider(time_, Interaction::Kind::join, i, j, nullptr);
       continue;
     }
+    // The later of two guaranteed times: the first-order one (the gap closes at most at the sum
+    // of the point-speed bounds) and the second-order one (contact/pair_gap_bound.h: the exact
+    // present rate and bounded accelerations; a pair sliding side by side goes ~sqrt(gap)).
     const double rate = point_speed_bound(i, dt) + (is_awake(j) ? point_speed_bound(j, dt) : 0.0);
-    if (rate > 0.0) {
-      consider(time_ + (c.gap_m - 0.5 * kJoinGapM) / rate, Interaction::Kind::none, 0, 0, nullptr);
+    const double first_order =
+        rate > 0.0 ? (c.gap_m - 0.5 * kJoinGapM) / rate : std::numeric_limits<double>::infinity();
+    const double step = std::max(first_order, second_order_step(i, j, c, dt));
+    if (step < std::numeric_limits<double>::infinity()) {
+      consider(time_ + step, Interaction::Kind::none, 0, 0, nullptr);
     }
   }
   return next;

@@ -194,13 +194,13 @@ TEST(WorldContacts, AStoneDroppedOnARestingStoneWakesItAndNeverPassesThrough) {
 }
 
 // The work budget covers the pair search and the islands: the drop above (its costly part,
-// two stones in plane contact side by side, is in its first 0.5 s) with 100 units per call. Every
+// two stones in plane contact side by side, is in its first 0.5 s) with 10 units per call. Every
 // call makes progress and stays within the bound (world.h: 2 max_steps, plus one pass's pair work
 // and one unit per stone or island in contact; a handful here), and the states are the same as
 // without a budget at the times both reach (the budget only cuts the work into calls).
 TEST(WorldContacts, AWorkBudgetBoundsThePairSearchAndTheIslands) {
   Dropped budgeted, free_run;
-  const vg::WorkBudget budget{100};
+  const vg::WorkBudget budget{10};
   std::vector<vg::WorldEvent> events;
   long calls = 0, largest = 0;
   for (int k = 1; k <= 500; ++k) {
@@ -221,7 +221,7 @@ TEST(WorldContacts, AWorkBudgetBoundsThePairSearchAndTheIslands) {
             << "stone " << i << " at " << t;
     }
   }
-  std::printf("budget 100: %ld calls for 500 grid times, largest call %ld units\n", calls, largest);
+  std::printf("budget 10: %ld calls for 500 grid times, largest call %ld units\n", calls, largest);
   EXPECT_GT(calls, 500);  // the budget did cut some calls
 }
 

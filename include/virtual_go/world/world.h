@@ -44,6 +44,7 @@
 #include <optional>
 #include <vector>
 
+#include "virtual_go/contact/pair_gap_bound.h"
 #include "virtual_go/contact/pair_time_of_impact.h"
 #include "virtual_go/contact/plane_contact.h"
 #include "virtual_go/flight/integrator.h"
@@ -285,6 +286,15 @@ class World {
   // (its island's) does not rise: kinetic energy at most the energy above the lowest potential
   // (the lens lying flat on the table, or on the top face when it cannot leave it in dt_s).
   double point_speed_bound(std::size_t i, double dt_s);
+  // The kinetic energy bound of that rule for stone i alone (J).
+  double kinetic_energy_bound(std::size_t i, double dt_s);
+  // Bounds of stone i's motion over the pass for the second-order gap bound
+  // (contact/pair_gap_bound.h): resting, flying, or in plane contact on the top face with a
+  // cap (then its force bound); nothing for an island member or the fallback.
+  std::optional<GapBoundMotion> gap_bound_motion(std::size_t i, double dt_s);
+  // How long the gap of the pair (i, j), c = lens_pair_distance(i, j), stays above half the
+  // join margin by the second-order bound; 0 when it does not apply.
+  double second_order_step(std::size_t i, std::size_t j, const LensPairContact& c, double dt_s);
   // The broad phase holds every resting stone (its rim sphere, entered when it comes to rest)
   // and every awake stone (its bounds for the pass, entered by the pair search).
   void enter_fallen_asleep();
