@@ -365,7 +365,9 @@ TEST(StoneSimulationNames, ASetDownBehindANudgingDropGetsTheAnswerItsApplication
   EXPECT_GT(a.base_moved_m, 1e-4) << "the drop did not nudge";
   EXPECT_EQ(a.applied, "point") << "the scene lost its point: the nudge leaves room at A2";
   EXPECT_EQ(a.asked, a.applied);
-  if (a.asked == "(accepted)") EXPECT_TRUE(a.placed) << "accepted when asked, refused when applied";
+  if (a.asked == "(accepted)") {
+    EXPECT_TRUE(a.placed) << "accepted when asked, refused when applied";
+  }
 }
 
 // A dropped stone is let go at its drop height: a set-down in the same step meets it there, not
@@ -383,9 +385,13 @@ TEST(StoneSimulationNames, ASetDownBehindADropMeetsItAtItsDropHeight) {
       SCOPED_TRACE(std::string("drop onto ") + drop_point + " from " + std::to_string(height_m));
       EXPECT_EQ(a.alone, "(accepted)");
       // From 5 cm the drop changes nothing for the set-down (the scene's point).
-      if (height_m == 0.05) EXPECT_EQ(a.applied, "(accepted)");
+      if (height_m == 0.05) {
+        EXPECT_EQ(a.applied, "(accepted)");
+      }
       EXPECT_EQ(a.asked, a.applied);
-      if (a.asked == "(accepted)") EXPECT_TRUE(a.placed) << "accepted when asked, not placed";
+      if (a.asked == "(accepted)") {
+        EXPECT_TRUE(a.placed) << "accepted when asked, not placed";
+      }
     }
   }
 }
