@@ -111,6 +111,9 @@ struct IslandBody {
   BoardDistance board;
   MotionSetup setup;
   RigidBodyState state;
+  // false: there is no board and no table (a world whose board is switched off); the member
+  // meets only the other members, and `separated` needs no board search.
+  bool board_enabled = true;
 };
 
 struct IslandMemberEnd {
@@ -159,6 +162,7 @@ class NonsmoothIsland {
   struct Member {
     BoardDistance board;
     MotionSetup setup;
+    bool board_enabled = true;
   };
   struct MemberContacts {
     int board = 0;            // board or table contacts within the margin
@@ -194,9 +198,29 @@ class NonsmoothIsland {
   double energy(const std::vector<RigidBodyState>& s, const std::vector<char>& active) const;
   double member_energy(std::size_t i, const RigidBodyState& s) const;
   double potential(const std::vector<RigidBodyState>& s, const std::vector<char>& active) const;
-  // Scales v and L of the active members by one factor so that the energy becomes energy_j;
-  // false (nothing changed) when that is impossible.
-  bool scale_kinetic_energy(std::vector<RigidBodyState>& s, double energy_j) const;
+  // The island's rigid motion (as one body) and each member's share of it.
+  struct RigidMotion {
+    Eigen::Vector3d centre_world;
+    Eigen::Matrix3d inertia_world;  // about the centre of mass
+    std::vector<Eigen::Vector3d> velocity_world, angular_momentum_world;
+  };
+  RigidMotion rigid_motion(const std::vector<RigidBodyState>& s) const;
+  // v and L of the active members times factor; with `rigid`, only their parts beyond it.
+  void scale_motion(std::vector<RigidBodyState>& s, double factor, const RigidMotion* rigid) const;
+  // Scales v and L of the active members by one factor so that the energy becomes energy_j
+  // (keep_momenta: only the motion beyond the island's rigid motion, so that momentum and
+  // angular momentum stay); false (s unchanged) when that is impossible.
+  bool scale_kinetic_energy(std::vector<RigidBodyState>& s, double energy_j,
+                            bool keep_momenta) const;
+  // A bound of the round-off in energy(s, active) (J).
+  double energy_round_off(const std::vector<RigidBodyState>& s) const;
+  // No active member has a board or table contact within the margin.
+  bool free_of_board(const std::vector<MemberContacts>& mc) const;
+  // Of the active members about the world origin.
+  Eigen::Vector3d angular_momentum(const std::vector<RigidBodyState>& s) const;
+  // Adds a rigid rotation about the centre of mass that brings it back to `before`.
+  void restore_angular_momentum(std::vector<RigidBodyState>& s,
+                                const Eigen::Vector3d& before) const;
   double lattice(long k) const { return t0_ + static_cast<double>(k) * options_.step_s; }
   IslandOutcome outcome(double t) const;
 
