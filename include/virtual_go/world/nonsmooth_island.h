@@ -177,6 +177,7 @@ class NonsmoothIsland {
     int board = 0;            // board or table contacts within the margin
     BoardContact contact[2];  // those contacts
     int stones = 0;           // contacts with other members within the margin
+    int near = 0;             // other members within kKeepMarginFactor margins (stay in)
     bool loaded = false;      // a correction or an impulse acted on it
   };
   struct PairContact {
