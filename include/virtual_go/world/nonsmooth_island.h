@@ -31,12 +31,12 @@
 // the island about its centre of mass, and step 4 and the samples scale only the motion beyond
 // the island's rigid motion (V + Omega x r, I_i Omega: it carries all of P and L, and its kinetic
 // energy adds to the rest's); an energy excess within the energy's own round-off
-// (energy_round_off) is left there rather than scaled away. Measured (test_world_pair_impacts):
-// P and L to 1.1e-14 and 9.4e-15 relative over 0.1 s, the sub-steps' round-off.
-// What is NOT exact: first order in h, a new impact inside the island is plastic, no rolling
-// resistance or spinning friction, rest by a speed threshold held over a time. What is kept: no
-// handed-out state overlaps (board and table gap >= -1e-12 m, pair gap >= -1e-12 m), no energy is
-// created, every impulse stays in Coulomb's cone.
+// (energy_round_off) is left there rather than scaled away (two members or more). Measured
+// (test_world_pair_impacts): P and L to 1.1e-14 and 9.4e-15 relative over 0.1 s, the sub-steps'
+// round-off. What is NOT exact: first order in h, a new impact inside the island is plastic, no
+// rolling resistance or spinning friction, rest by a speed threshold held over a time. What is
+// kept: no handed-out state overlaps (board and table gap >= -1e-12 m, pair gap >= -1e-12 m), no
+// energy is created, every impulse stays in Coulomb's cone.
 //
 // The sub-steps lie on the lattice t0 + k h, so the motion does not depend on when it is sampled.
 // A sample at t between lattice points k and k+1 is a partial sub-step from k (its poses) whose
@@ -44,7 +44,7 @@
 // that cannot be reached by scaling, lattice state k+1 itself): the energies handed out are
 // E_k >= E(samples) = E_{k+1}, never rising.
 //
-// Ends, at a lattice point. A member with no stone contact within the margin leaves the island
+// Ends, at a lattice point. A member with no other member within 10 margins leaves the island
 //   plane      when its one loaded contact is the top face or the table with the contact point
 //              plane_margin_m inside its region (the exact plane model takes over);
 //   rest       when it touches the board or the table and its speeds stayed below rest_speed_m_s
