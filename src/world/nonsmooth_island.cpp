@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "virtual_go/body/rigid_body.h"
@@ -37,6 +38,11 @@ constexpr double kPressedCosine = 0.5;
 // stone to the board with its torque (an eccentric landing can tip it); holding the lower stone
 // from then on makes the rest converge at once instead of halving per sweep.
 constexpr int kPlainSweeps = 8;
+// A member leaves the island only with no other member within this many contact margins: the
+// World joins stones in contact within one margin (touching, approaching or not), so a member let
+// go just beyond one margin would rejoin within a few passes, again and again (a cradle row on
+// the real board: 754 islands of ~2 sub-steps each, resting at 2.3 s instead of 0.14 s).
+constexpr double kKeepMarginFactor = 10.0;
 
 ContactMaterial plastic(ContactMaterial m) {
   m.restitution = 0.0;
@@ -121,7 +127,7 @@ NonsmoothIsland::NonsmoothIsland(std::vector<IslandBody> bodies,
   }
   for (IslandBody& b : bodies) {
     lattice_.states.push_back(b.state.validated());
-    members_.push_back(Member{b.board, b.setup});
+    members_.push_back(Member{b.board, b.setup, b.board_enabled});
   }
   lattice_.active.assign(members_.size(), 1);
   lattice_.calm_steps.assign(members_.size(), 0);
@@ -155,29 +161,150 @@ double NonsmoothIsland::potential(const std::vector<RigidBodyState>& s,
   return e;
 }
 
-bool NonsmoothIsland::scale_kinetic_energy(std::vector<RigidBodyState>& s, double energy_j) const {
-  // Velocity and angular momentum of all members scaled together: the kinetic energy is
-  // quadratic in them, the potential energy and the poses do not change.
-  const double p = potential(s, lattice_.active);
-  const double kinetic = energy(s, lattice_.active) - p;
-  const double target = energy_j - p;
-  if (!(target >= 0.0) || !(kinetic > 0.0)) return false;
-  const double scale = std::sqrt(target / kinetic);
+NonsmoothIsland::RigidMotion NonsmoothIsland::rigid_motion(
+    const std::vector<RigidBodyState>& s) const {
+  // The island as one rigid body: centre of mass X, velocity V, inertia about X
+  // I = sum (I_i + m_i (|r_i|^2 1 - r_i r_i^T)), angular momentum about X L = sum (L_i + m_i r_i x
+  // (v_i - V)), Omega = I^-1 L. Each member's share: v_i = V + Omega x r_i, L_i = I_i Omega.
+  // The rest of the motion carries no momentum and no angular momentum, and its kinetic energy
+  // adds to the rigid motion's (the cross terms are V . sum m dv + Omega . (sum m r x dv + I_i
+  // dw) = 0).
+  const std::size_t n = s.size();
+  double mass = 0.0;
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero(), momentum = Eigen::Vector3d::Zero();
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!lattice_.active[i]) continue;
+    const double m = members_[i].setup.model.mass_properties().mass();
+    mass += m;
+    centre += m * s[i].position_world;
+    momentum += m * s[i].velocity_world;
+  }
+  centre /= mass;
+  const Eigen::Vector3d v_centre = momentum / mass;
+  Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d spin = Eigen::Vector3d::Zero();
+  std::vector<Eigen::Matrix3d> own(n, Eigen::Matrix3d::Zero());
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!lattice_.active[i]) continue;
+    const double m = members_[i].setup.model.mass_properties().mass();
+    const Eigen::Vector3d r = s[i].position_world - centre;
+    own[i] = members_[i].setup.model.inertia_world(s[i].orientation);
+    inertia += own[i] + m * (r.squaredNorm() * Eigen::Matrix3d::Identity() - r * r.transpose());
+    spin += s[i].angular_momentum_world + m * r.cross(s[i].velocity_world - v_centre);
+  }
+  const Eigen::Vector3d omega = inertia.ldlt().solve(spin);
+  RigidMotion rigid;
+  rigid.centre_world = centre;
+  rigid.inertia_world = inertia;
+  rigid.velocity_world.assign(n, Eigen::Vector3d::Zero());
+  rigid.angular_momentum_world.assign(n, Eigen::Vector3d::Zero());
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!lattice_.active[i]) continue;
+    rigid.velocity_world[i] = v_centre + omega.cross(s[i].position_world - centre);
+    rigid.angular_momentum_world[i] = own[i] * omega;
+  }
+  return rigid;
+}
+
+void NonsmoothIsland::scale_motion(std::vector<RigidBodyState>& s, double factor,
+                                   const RigidMotion* rigid) const {
   for (std::size_t i = 0; i < s.size(); ++i) {
     if (!lattice_.active[i]) continue;
-    s[i].velocity_world *= scale;
-    s[i].angular_momentum_world *= scale;
-  }
-  // The scaled energy can come out a few ulps above the target: shrink a little more.
-  double shrink = 1e-15;
-  for (int k = 0; k < 40 && energy(s, lattice_.active) > energy_j; ++k, shrink *= 4.0) {
-    for (std::size_t i = 0; i < s.size(); ++i) {
-      if (!lattice_.active[i]) continue;
-      s[i].velocity_world *= 1.0 - shrink;
-      s[i].angular_momentum_world *= 1.0 - shrink;
+    if (!rigid) {
+      s[i].velocity_world *= factor;
+      s[i].angular_momentum_world *= factor;
+      continue;
     }
+    const Eigen::Vector3d &v = rigid->velocity_world[i], &l = rigid->angular_momentum_world[i];
+    s[i].velocity_world = v + factor * (s[i].velocity_world - v);
+    s[i].angular_momentum_world = l + factor * (s[i].angular_momentum_world - l);
   }
-  return energy(s, lattice_.active) <= energy_j;
+}
+
+double NonsmoothIsland::energy_round_off(const std::vector<RigidBodyState>& s) const {
+  // The energy is a sum of terms (potential -m g . x about the world origin, kinetic), each
+  // exact to an ulp or so: 16 epsilon of the sum of their magnitudes bounds its round-off.
+  double magnitude = 0.0;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    if (!lattice_.active[i]) continue;
+    RigidBodyState still = s[i];
+    still.velocity_world.setZero();
+    still.angular_momentum_world.setZero();
+    const double p = member_energy(i, still);
+    magnitude += std::abs(p) + std::abs(member_energy(i, s[i]) - p);
+  }
+  return 16.0 * std::numeric_limits<double>::epsilon() * magnitude;
+}
+
+bool NonsmoothIsland::scale_kinetic_energy(std::vector<RigidBodyState>& s, double energy_j,
+                                           bool keep_momenta) const {
+  // Velocity and angular momentum of all members scaled together: the kinetic energy is
+  // quadratic in them, the potential energy and the poses do not change. Keeping the momenta
+  // (an island free of the board: only internal forces act), the motion relative to the island's
+  // rigid motion is scaled instead, and the rigid motion is kept.
+  std::optional<RigidMotion> rigid;
+  double fixed = potential(s, lattice_.active);
+  if (keep_momenta) {
+    rigid = rigid_motion(s);
+    std::vector<RigidBodyState> r = s;
+    for (std::size_t i = 0; i < r.size(); ++i) {
+      r[i].velocity_world = rigid->velocity_world[i];
+      r[i].angular_momentum_world = rigid->angular_momentum_world[i];
+    }
+    fixed = energy(r, lattice_.active);
+  }
+  const RigidMotion* keep = rigid ? &*rigid : nullptr;
+  const double kinetic = energy(s, lattice_.active) - fixed;
+  const double target = energy_j - fixed;
+  if (!(target >= 0.0) || !(kinetic > 0.0)) return false;
+  // The relative motion is only taken from, never grown: when it is almost gone (a row moving
+  // as one) the factor that grows it to a round-off's worth of energy would be any number.
+  if (keep && target > kinetic) return false;
+  std::vector<RigidBodyState> scaled = s;
+  scale_motion(scaled, std::sqrt(target / kinetic), keep);
+  // The scaled energy can come out a few ulps above the target: shrink a little more (never by
+  // more than a millionth: beyond round-off the target cannot be reached this way).
+  for (double shrink = 1e-15; shrink < 1e-6 && energy(scaled, lattice_.active) > energy_j;
+       shrink *= 4.0) {
+    scale_motion(scaled, 1.0 - shrink, keep);
+  }
+  if (!(energy(scaled, lattice_.active) <= energy_j)) return false;
+  s = std::move(scaled);
+  return true;
+}
+
+bool NonsmoothIsland::free_of_board(const std::vector<MemberContacts>& mc) const {
+  for (std::size_t i = 0; i < mc.size(); ++i) {
+    if (lattice_.active[i] && mc[i].board > 0) return false;
+  }
+  return true;
+}
+
+Eigen::Vector3d NonsmoothIsland::angular_momentum(const std::vector<RigidBodyState>& s) const {
+  Eigen::Vector3d l = Eigen::Vector3d::Zero();
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    if (!lattice_.active[i]) continue;
+    const double m = members_[i].setup.model.mass_properties().mass();
+    l += s[i].angular_momentum_world + m * s[i].position_world.cross(s[i].velocity_world);
+  }
+  return l;
+}
+
+void NonsmoothIsland::restore_angular_momentum(std::vector<RigidBodyState>& s,
+                                               const Eigen::Vector3d& before) const {
+  // A pair correction moves both stones along n with the momentum kept (split by inverse mass),
+  // but changes sum m x x v by mu d n x (v_b - v_a). Returned by a rigid rotation of the whole
+  // island about its centre of mass (no momentum; energy of its order, which the guard takes).
+  const Eigen::Vector3d missing = before - angular_momentum(s);
+  if (!(missing.norm() > 0.0)) return;
+  const RigidMotion rigid = rigid_motion(s);
+  const Eigen::Vector3d d_omega = rigid.inertia_world.ldlt().solve(missing);
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    if (!lattice_.active[i]) continue;
+    s[i].velocity_world += d_omega.cross(s[i].position_world - rigid.centre_world);
+    s[i].angular_momentum_world +=
+        members_[i].setup.model.inertia_world(s[i].orientation) * d_omega;
+  }
 }
 
 void NonsmoothIsland::project(std::vector<RigidBodyState>& s, std::vector<MemberContacts>& mc,
@@ -191,7 +318,7 @@ void NonsmoothIsland::project(std::vector<RigidBodyState>& s, std::vector<Member
     // The board and the table: translate along the deeper contact's normal (their normals are
     // the separating directions, so one correction along one of them makes that gap zero).
     for (std::size_t i = 0; i < n; ++i) {
-      if (!lattice_.active[i]) continue;
+      if (!lattice_.active[i] || !members_[i].board_enabled) continue;
       for (int k = 0; k < kMaxCorrections; ++k) {
         const LensPose pose = lens_pose(s[i]);
         const BoardContact box = members_[i].board.box(pose), table = members_[i].board.table(pose);
@@ -264,8 +391,8 @@ bool NonsmoothIsland::gather(const std::vector<RigidBodyState>& s, std::vector<M
   bool clear = true;
   pairs.clear();
   for (std::size_t i = 0; i < n; ++i) {
-    mc[i].board = mc[i].stones = 0;
-    if (!lattice_.active[i]) continue;
+    mc[i].board = mc[i].stones = mc[i].near = 0;
+    if (!lattice_.active[i] || !members_[i].board_enabled) continue;
     const LensPose pose = lens_pose(s[i]);
     for (const BoardContact& c : {members_[i].board.box(pose), members_[i].board.table(pose)}) {
       if (c.lens.gap_m < -kGapToleranceM) clear = false;
@@ -275,13 +402,17 @@ bool NonsmoothIsland::gather(const std::vector<RigidBodyState>& s, std::vector<M
   for (std::size_t a = 0; a < n; ++a) {
     if (!lattice_.active[a]) continue;
     for (std::size_t b = a + 1; b < n; ++b) {
-      if (!lattice_.active[b] || apart_by_bounds(members_[a].board, s[a], members_[b].board, s[b],
-                                                 options_.contact_margin_m)) {
+      const double keep_m = kKeepMarginFactor * options_.contact_margin_m;
+      if (!lattice_.active[b] ||
+          apart_by_bounds(members_[a].board, s[a], members_[b].board, s[b], keep_m)) {
         continue;
       }
       const LensPairContact c = pair_contact(members_[a].board, s[a], members_[b].board, s[b]);
       if (commit) ++counters_.pair_distances;
       if (c.gap_m < -kGapToleranceM) clear = false;
+      if (c.gap_m > keep_m) continue;
+      ++mc[a].near;
+      ++mc[b].near;
       if (c.gap_m > options_.contact_margin_m) continue;
       ++mc[a].stones;
       ++mc[b].stones;
@@ -305,6 +436,7 @@ NonsmoothIsland::Step NonsmoothIsland::sub_step(const std::vector<RigidBodyState
 
   // 2. Out of every overlap.
   int projection_sweeps = 0;
+  const Eigen::Vector3d flight_angular_momentum = angular_momentum(s);
   project(s, out.contacts, commit, projection_sweeps);
   std::vector<PairContact> pairs;
   bool hold = false;
@@ -313,6 +445,10 @@ NonsmoothIsland::Step NonsmoothIsland::sub_step(const std::vector<RigidBodyState
     hold = true;
     if (commit) ++counters_.projection_failures;
   }
+  // Free of the board and the table, only the members' forces on each other act: momentum and
+  // angular momentum are kept (the flight keeps them; the corrections keep the momentum).
+  const bool free = free_of_board(out.contacts);
+  if (!hold && free) restore_angular_momentum(s, flight_angular_momentum);
 
   // 3. Plastic impulses at the contacts within the margin, Gauss-Seidel until none approaches:
   // the board's first (they carry the weight), then the pairs.
@@ -385,10 +521,19 @@ NonsmoothIsland::Step NonsmoothIsland::sub_step(const std::vector<RigidBodyState
     }
   }
 
-  // 4. The energy guard over the island: never above the previous lattice state's energy.
-  if (!hold && energy(s, lattice_.active) > energy_cap_j) {
+  // 4. The energy guard over the island: never above the previous lattice state's energy. Free
+  // of the board with two members or more, an excess within the energy's own round-off is left
+  // (the exact flight, which no impulse changed, hands out such states too): scaling it away
+  // would change the momenta. (One member has no motion beyond the rigid one: scaled as before.)
+  const bool round_off_only = free &&
+                              std::count(lattice_.active.begin(), lattice_.active.end(), 1) > 1 &&
+                              energy(s, lattice_.active) - energy_cap_j <= energy_round_off(s);
+  if (!hold && !round_off_only && energy(s, lattice_.active) > energy_cap_j) {
     if (commit) ++counters_.energy_guard_scalings;
-    if (!scale_kinetic_energy(s, energy_cap_j) || energy(s, lattice_.active) > energy_cap_j) {
+    // Free: the motion relative to the rigid motion first (momenta kept), else all of it.
+    const bool scaled = (free && scale_kinetic_energy(s, energy_cap_j, true)) ||
+                        scale_kinetic_energy(s, energy_cap_j, false);
+    if (!scaled || energy(s, lattice_.active) > energy_cap_j) {
       hold = true;  // the lift cannot be paid for
     }
   }
@@ -468,7 +613,7 @@ NonsmoothIsland::Lattice NonsmoothIsland::next_lattice() {
   // The plane model first: a member alone on the top face or the table.
   for (std::size_t i = 0; i < n; ++i) {
     const MemberContacts& m = step.contacts[i];
-    if (!next.active[i] || m.stones > 0 || !m.loaded || m.board != 1) continue;
+    if (!next.active[i] || m.near > 0 || !m.loaded || m.board != 1) continue;
     const BoardContact& c = m.contact[0];
     const RigidBodyState& s = next.states[i];
     const double u_n = c.lens.normal_world.dot(
@@ -495,7 +640,7 @@ NonsmoothIsland::Lattice NonsmoothIsland::next_lattice() {
       leave(i, NonsmoothEnd::rest);
       continue;
     }
-    if (m.stones > 0) continue;
+    if (m.near > 0) continue;
     if (m.board > 0 && calm_for_long(i)) {
       leave(i, NonsmoothEnd::rest);
       continue;
@@ -526,6 +671,10 @@ NonsmoothIsland::Lattice NonsmoothIsland::next_lattice() {
       }
     }
     if (reachable) continue;
+    if (!members_[i].board_enabled) {
+      leave(i, NonsmoothEnd::separated);
+      continue;
+    }
     ++counters_.separation_searches;
     const TimeOfImpact toi = board_time_of_impact(members_[i].board, members_[i].setup, s, t, t,
                                                   t + o.separation_time_s);
@@ -600,16 +749,34 @@ IslandOutcome NonsmoothIsland::advance(double t_end_s, long max_steps) {
   Step partial = sub_step(lattice_.states, since, lattice_.energy_j, false);
   IslandOutcome o;
   o.time_s = t_end_s;
-  bool scaled = scale_kinetic_energy(partial.states, next_j);
-  // Round-off can leave it ulps below next_j: grow it back as little as needed.
-  double grow = 1e-15;
-  for (int k = 0; scaled && k < 40 && energy(partial.states, lattice_.active) < next_j;
-       ++k, grow *= 4.0) {
-    for (std::size_t i = 0; i < partial.states.size(); ++i) {
-      if (!lattice_.active[i]) continue;
-      partial.states[i].velocity_world *= 1.0 + grow;
-      partial.states[i].angular_momentum_world *= 1.0 + grow;
+  // Free of the board: as it is when its energy is next_j to round-off, else the motion
+  // relative to the rigid motion scaled (momenta kept), else all of it.
+  const bool free = free_of_board(partial.contacts);
+  const double partial_j = energy(partial.states, lattice_.active);
+  if (free && std::count(lattice_.active.begin(), lattice_.active.end(), 1) > 1 &&
+      std::abs(partial_j - next_j) <= energy_round_off(partial.states) &&
+      partial_j <= lattice_.energy_j + energy_round_off(partial.states)) {
+    o.states = partial.states;
+    for (std::size_t i = 0; i < o.states.size(); ++i) {
+      if (!lattice_.active[i]) o.states[i] = lattice_.states[i];
     }
+    return o;
+  }
+  std::optional<RigidMotion> rigid;
+  bool scaled = false;
+  if (free) {
+    rigid = rigid_motion(partial.states);
+    scaled = scale_kinetic_energy(partial.states, next_j, true);
+  }
+  if (!scaled) {
+    rigid.reset();
+    scaled = scale_kinetic_energy(partial.states, next_j, false);
+  }
+  // Round-off can leave it ulps below next_j: grow it back as little as needed (by a millionth
+  // at most: more is not round-off).
+  for (double grow = 1e-15;
+       scaled && grow < 1e-6 && energy(partial.states, lattice_.active) < next_j; grow *= 4.0) {
+    scale_motion(partial.states, 1.0 + grow, rigid ? &*rigid : nullptr);
   }
   const double e = energy(partial.states, lattice_.active);
   if (scaled && e >= next_j && e <= lattice_.energy_j) {
