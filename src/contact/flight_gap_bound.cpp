@@ -4,31 +4,11 @@
 #include <cmath>
 #include <limits>
 
+#include "virtual_go/contact/gap_root.h"
+
 namespace virtual_go {
 
-namespace {
-
-constexpr double kInfinity = std::numeric_limits<double>::infinity();
-
-// First tau > 0 with c0 + c1 tau + c2 tau^2 / 2 = 0 for c0 > 0, in the form that does not
-// cancel: 2 c0 / (-c1 + sqrt(c1^2 - 2 c0 c2)) when c1 <= 0, (c1 + sqrt(...)) / -c2 when c1 > 0
-// (then c2 < 0). A cancelling form here once made a 6 cm/s bounce overshoot by 35 us.
-double first_root(double c0, double c1, double c2) {
-  if (!(c0 > 0.0)) return 0.0;
-  if (c2 == 0.0) return c1 < 0.0 ? c0 / -c1 : kInfinity;
-  const double disc = c1 * c1 - 2.0 * c0 * c2;
-  if (c2 > 0.0 && (c1 >= 0.0 || disc < 0.0)) return kInfinity;
-  if (c1 > 0.0) return (c1 + std::sqrt(disc)) / -c2;
-  return 2.0 * c0 / (-c1 + std::sqrt(disc));
-}
-
-// The same parabola started from 0: the end of the interval on which it stays positive.
-double positive_stretch(double c1, double c2) {
-  if (!(c1 > 0.0)) return 0.0;
-  return c2 < 0.0 ? -2.0 * c1 / c2 : kInfinity;
-}
-
-}  // namespace
+namespace {}  // namespace
 
 Eigen::Vector3d axis_precession_world(const MotionModel& model, const RigidBodyState& state) {
   if (model.kind() == MotionModelKind::constant_omega) {
@@ -87,13 +67,13 @@ double FlightGapBound::lower_bound(double tau) const {
 
 double FlightGapBound::safe_step(bool touching) const {
   if (gap_ > 0.0) {
-    return std::max({first_root(gap_ + reach_now_ - reach_max_, speed_, accel_),
-                     first_root(gap_, speed_ - rate_bound_, accel_),
-                     first_root(gap_, rate_, accel_ - accel_bound_)});
+    return std::max({first_gap_root(gap_ + reach_now_ - reach_max_, speed_, accel_),
+                     first_gap_root(gap_, speed_ - rate_bound_, accel_),
+                     first_gap_root(gap_, rate_, accel_ - accel_bound_)});
   }
   if (!touching) return 0.0;
-  return std::max(positive_stretch(speed_ - rate_bound_, accel_),
-                  positive_stretch(rate_, accel_ - accel_bound_));
+  return std::max(positive_gap_stretch(speed_ - rate_bound_, accel_),
+                  positive_gap_stretch(rate_, accel_ - accel_bound_));
 }
 
 }  // namespace virtual_go

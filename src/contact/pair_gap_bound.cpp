@@ -5,6 +5,8 @@
 #include <limits>
 #include <utility>
 
+#include "virtual_go/contact/gap_root.h"
+
 namespace virtual_go {
 
 namespace {
@@ -20,17 +22,6 @@ constexpr double kLiftOffShare = 0.9;
 // How far (rad) the tilt may grow within the bound's validity: a smaller tilt range gives a
 // smaller lever for friction and for the spin's lift.
 constexpr double kTiltRoom = 0.25;
-
-// First tau > 0 with c0 + c1 tau + c2 tau^2 / 2 = 0 for c0 > 0, in the non-cancelling form
-// (as flight_gap_bound.cpp's): 2 c0 / (-c1 + sqrt(c1^2 - 2 c0 c2)) when c1 <= 0.
-double first_root(double c0, double c1, double c2) {
-  if (!(c0 > 0.0)) return 0.0;
-  if (c2 == 0.0) return c1 < 0.0 ? c0 / -c1 : kInfinity;
-  const double disc = c1 * c1 - 2.0 * c0 * c2;
-  if (c2 > 0.0 && (c1 >= 0.0 || disc < 0.0)) return kInfinity;
-  if (c1 > 0.0) return (c1 + std::sqrt(disc)) / -c2;
-  return 2.0 * c0 / (-c1 + std::sqrt(disc));
-}
 
 // Transverse and axial moments (I1, I3) of an axisymmetric body as the model's Euler equations
 // see it; nothing when the body is not axisymmetric.
@@ -157,7 +148,7 @@ double PairGapBound::lower_bound(double tau) const {
 }
 
 double PairGapBound::time_to(double level_m) const {
-  return std::min(valid_for_, first_root(gap_ - level_m, rate_, curvature_));
+  return std::min(valid_for_, first_gap_root(gap_ - level_m, rate_, curvature_));
 }
 
 }  // namespace virtual_go

@@ -6,6 +6,7 @@
 
 #include "virtual_go/common/validation.h"
 #include "virtual_go/contact/flight_gap_bound.h"
+#include "virtual_go/contact/gap_root.h"
 #include "virtual_go/contact/time_of_impact.h"
 #include "virtual_go/flight/exact_motion.h"
 
@@ -13,26 +14,9 @@ namespace virtual_go {
 
 namespace {
 
-constexpr double kInfinity = std::numeric_limits<double>::infinity();
 // Gaps above this (m) fix the normal well: touching, the normal can be a whole set of
 // directions (two flat rims in one plane), and then the one seen on the approach is kept.
 constexpr double kResolvableGapM = 1e-12;
-
-// First tau > 0 of c0 + c1 tau + c2 tau^2 / 2 for c0 > 0, in the form that does not cancel.
-double first_root(double c0, double c1, double c2) {
-  if (!(c0 > 0.0)) return 0.0;
-  if (c2 == 0.0) return c1 < 0.0 ? c0 / -c1 : kInfinity;
-  const double disc = c1 * c1 - 2.0 * c0 * c2;
-  if (c2 > 0.0 && (c1 >= 0.0 || disc < 0.0)) return kInfinity;
-  if (c1 > 0.0) return (c1 + std::sqrt(disc)) / -c2;
-  return 2.0 * c0 / (-c1 + std::sqrt(disc));
-}
-
-// The same parabola from 0: how long it stays positive.
-double positive_stretch(double c1, double c2) {
-  if (!(c1 > 0.0)) return 0.0;
-  return c2 < 0.0 ? -2.0 * c1 / c2 : kInfinity;
-}
 
 // How fast one stone's reach along a fixed n can change, from its uniform axis precession.
 struct ReachMotion {
@@ -142,14 +126,14 @@ PairTimeOfImpact pair_time_of_impact(const StoneMotion& a, const StoneMotion& b,
     const bool touching = std::abs(gap) <= options.touch_tolerance_m;
     double step;
     if (gap > 0.0) {
-      step = std::max(
-          {first_root(gap - ra.reach_growth - rb.reach_growth, speed, accel),
-           first_root(gap, speed - ra.rate_bound - rb.rate_bound, accel),
-           first_root(gap, speed - ra.slope - rb.slope, accel - ra.accel_bound - rb.accel_bound)});
+      step = std::max({first_gap_root(gap - ra.reach_growth - rb.reach_growth, speed, accel),
+                       first_gap_root(gap, speed - ra.rate_bound - rb.rate_bound, accel),
+                       first_gap_root(gap, speed - ra.slope - rb.slope,
+                                      accel - ra.accel_bound - rb.accel_bound)});
     } else if (touching) {  // separating from a touch: while g_n cannot fall below its value
-      step = std::max(
-          positive_stretch(speed - ra.rate_bound - rb.rate_bound, accel),
-          positive_stretch(speed - ra.slope - rb.slope, accel - ra.accel_bound - rb.accel_bound));
+      step = std::max(positive_gap_stretch(speed - ra.rate_bound - rb.rate_bound, accel),
+                      positive_gap_stretch(speed - ra.slope - rb.slope,
+                                           accel - ra.accel_bound - rb.accel_bound));
     } else {
       step = 0.0;  // overlapping by more than the tolerance and separating: say so now
     }
