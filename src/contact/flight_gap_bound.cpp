@@ -8,7 +8,6 @@
 
 namespace virtual_go {
 
-namespace {}  // namespace
 
 Eigen::Vector3d axis_precession_world(const MotionModel& model, const RigidBodyState& state) {
   if (model.kind() == MotionModelKind::constant_omega) {
