@@ -8,7 +8,6 @@
 
 namespace virtual_go {
 
-
 Eigen::Vector3d axis_precession_world(const MotionModel& model, const RigidBodyState& state) {
   if (model.kind() == MotionModelKind::constant_omega) {
     return model.angular_velocity_world(state.orientation, state.angular_momentum_world);
