@@ -43,6 +43,27 @@ vg::PlaneContactMode mode_of(vg::LensPart part, vg::ContactLaw t, vg::ContactLaw
   return m;
 }
 
+// A random state on a cap or the rim (orientation uniform, slip ~0.3 m/s, spin ~20 rad/s) in mode
+// i % 27 (tangential, rolling and spinning each free, sliding or stuck), each sliding law along
+// the present motion.
+std::pair<vg::PlaneContactMode, vg::PlaneContactKinematics> random_mode_state(
+    const vg::PlaneContactSetup& setup, int i, std::mt19937& rng) {
+  std::normal_distribution<double> n;
+  const Eigen::Quaterniond q = Eigen::Quaterniond(n(rng), n(rng), n(rng), n(rng)).normalized();
+  const Vector3d b = q * Vector3d::UnitZ();
+  const vg::ContactLaw laws[3] = {vg::ContactLaw::free, vg::ContactLaw::sliding,
+                                  vg::ContactLaw::stuck};
+  auto mode = mode_of(setup.lens.part_towards_plane(b.z()), laws[i % 3], laws[(i / 3) % 3],
+                      laws[(i / 9) % 3]);
+  const Vector2d v(0.3 * n(rng), 0.3 * n(rng));
+  const Vector3d omega(20 * n(rng), 20 * n(rng), 20 * n(rng));
+  const auto k0 = vg::plane_contact_kinematics(setup, mode, Vector2d::Zero(), q, v, omega);
+  mode.tangential.reference_world = k0.slip_velocity().normalized();
+  mode.rolling.reference_world = k0.rolling_velocity().normalized();
+  mode.spinning.reference_world = Vector3d(0, 0, k0.spin_velocity() > 0 ? 1 : -1);
+  return {mode, vg::plane_contact_kinematics(setup, mode, Vector2d::Zero(), q, v, omega)};
+}
+
 // Power of all forces but gravity: dE/dt from the accelerations, E = 1/2 m v^2 + 1/2 w.Iw - m g.x.
 double energy_rate(const vg::PlaneContactSetup& s, const vg::PlaneContactKinematics& k,
                    const vg::PlaneContactForces& f) {
@@ -134,22 +155,7 @@ TEST(PlaneContactDynamics, ContactForcesDissipateExactlyAtTheSlidingLawsRate) {
   int checked = 0;
   double worst = 0.0;
   for (int i = 0; i < 3000; ++i) {
-    const Eigen::Quaterniond q = Eigen::Quaterniond(n(rng), n(rng), n(rng), n(rng)).normalized();
-    const Vector3d b = q * Vector3d::UnitZ();
-    vg::PlaneContactMode mode;
-    mode.part = setup.lens.part_towards_plane(b.z());
-    const vg::ContactLaw laws[3] = {vg::ContactLaw::free, vg::ContactLaw::sliding,
-                                    vg::ContactLaw::stuck};
-    mode.tangential.law = laws[i % 3];
-    mode.rolling.law = laws[(i / 3) % 3];
-    mode.spinning.law = laws[(i / 9) % 3];
-    const Vector2d v(0.3 * n(rng), 0.3 * n(rng));
-    const Vector3d omega(20 * n(rng), 20 * n(rng), 20 * n(rng));
-    const auto k0 = vg::plane_contact_kinematics(setup, mode, Vector2d::Zero(), q, v, omega);
-    mode.tangential.reference_world = k0.slip_velocity().normalized();
-    mode.rolling.reference_world = k0.rolling_velocity().normalized();
-    mode.spinning.reference_world = Vector3d(0, 0, k0.spin_velocity() > 0 ? 1 : -1);
-    const auto k = vg::plane_contact_kinematics(setup, mode, Vector2d::Zero(), q, v, omega);
+    const auto [mode, k] = random_mode_state(setup, i, rng);
     const auto f = vg::solve_plane_contact(setup, mode, k);
     ASSERT_TRUE(f.solved);
     const double nf = f.normal_force_n;
@@ -233,19 +239,7 @@ TEST(PlaneContactDynamics, ForcesSatisfyNewtonEulerTheConstraintsAndTheLawsInEve
   std::normal_distribution<double> n;
   double worst_motion = 0.0, worst_constraint = 0.0, worst_law = 0.0;
   for (int i = 0; i < 2700; ++i) {
-    const Eigen::Quaterniond q = Eigen::Quaterniond(n(rng), n(rng), n(rng), n(rng)).normalized();
-    const Vector3d b = q * Vector3d::UnitZ();
-    const vg::ContactLaw laws[3] = {vg::ContactLaw::free, vg::ContactLaw::sliding,
-                                    vg::ContactLaw::stuck};
-    auto mode = mode_of(setup.lens.part_towards_plane(b.z()), laws[i % 3], laws[(i / 3) % 3],
-                        laws[(i / 9) % 3]);
-    const Vector2d v(0.3 * n(rng), 0.3 * n(rng));
-    const Vector3d omega(20 * n(rng), 20 * n(rng), 20 * n(rng));
-    const auto k0 = vg::plane_contact_kinematics(setup, mode, Vector2d::Zero(), q, v, omega);
-    mode.tangential.reference_world = k0.slip_velocity().normalized();
-    mode.rolling.reference_world = k0.rolling_velocity().normalized();
-    mode.spinning.reference_world = Vector3d(0, 0, k0.spin_velocity() > 0 ? 1 : -1);
-    const auto k = vg::plane_contact_kinematics(setup, mode, Vector2d::Zero(), q, v, omega);
+    const auto [mode, k] = random_mode_state(setup, i, rng);
     const auto f = vg::solve_plane_contact(setup, mode, k);
     ASSERT_TRUE(f.solved);
     const Vector3d& w = k.angular_velocity_world;
