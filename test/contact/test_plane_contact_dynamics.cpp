@@ -151,7 +151,6 @@ TEST(PlaneContactDynamics, ContactForcesDissipateExactlyAtTheSlidingLawsRate) {
   const auto setup = make_setup(0.4, 20e-6, 30e-6);
   const double m = kMass.mass();
   std::mt19937 rng(17);
-  std::normal_distribution<double> n;
   int checked = 0;
   double worst = 0.0;
   for (int i = 0; i < 3000; ++i) {
@@ -236,7 +235,6 @@ TEST(PlaneContactDynamics, ForcesSatisfyNewtonEulerTheConstraintsAndTheLawsInEve
   const auto setup = make_setup(mu, l_r, l_s);
   const double m = kMass.mass();
   std::mt19937 rng(29);
-  std::normal_distribution<double> n;
   double worst_motion = 0.0, worst_constraint = 0.0, worst_law = 0.0;
   for (int i = 0; i < 2700; ++i) {
     const auto [mode, k] = random_mode_state(setup, i, rng);
