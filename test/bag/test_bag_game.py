@@ -10,7 +10,6 @@ bag_report --strict on the bag must exit 0. A copy with one resting stone's posi
 lands on its point and stone-stone contact is off in the node, so from then on neighbours on a
 row overlap (1.4e-4 m black-black, 3.6e-5 m black-white: bag_report's overlap check fails)."""
 import os
-import signal
 import subprocess
 import sys
 import time
@@ -21,6 +20,9 @@ import rosgraph
 import rospy
 import rostest
 from virtual_go.msg import StoneStates
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
+from process_group import interrupt_group  # noqa: E402  (test/support, beside this folder)
 
 PKG = "virtual_go"
 NODE = "/stone"
@@ -113,8 +115,8 @@ class BagOfAGameTest(unittest.TestCase):
             sub.unregister()
             time.sleep(1.5)
         finally:
-            os.killpg(recorder.pid, signal.SIGINT)
-            recorder.wait(timeout=30)
+            # Until `record` itself has closed the bag, not only the `rosbag` wrapper.
+            self.assertTrue(interrupt_group(recorder), "rosbag record ignored SIGINT for 30 s")
         self.assertTrue(os.path.isfile(bag), "rosbag did not close " + bag)
 
         run, seconds = bag_report(bag)

@@ -48,7 +48,6 @@ live launch after the replay must publish (a `use_sim_time` left behind would si
 import os
 import re
 import shlex
-import signal
 import subprocess
 import sys
 import tempfile
@@ -62,6 +61,9 @@ import rostest
 import yaml
 from tf2_msgs.msg import TFMessage
 from virtual_go.msg import StoneEvent, StoneInfo
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
+from process_group import interrupt_group  # noqa: E402  (test/support, beside this folder)
 
 PKG = "virtual_go"
 NODE = "/stone"
@@ -108,13 +110,9 @@ class Process:
                                         stderr=subprocess.STDOUT, start_new_session=True)
 
     def ctrl_c(self, timeout_s=20.0):
-        if self.process.poll() is None:
-            os.killpg(self.process.pid, signal.SIGINT)
-            try:
-                self.process.wait(timeout=timeout_s)
-            except subprocess.TimeoutExpired:
-                os.killpg(self.process.pid, signal.SIGKILL)
-                self.process.wait()
+        # The whole job ends, not only bash: `rosbag record`'s wrapper exits before `record` has
+        # closed the bag.
+        interrupt_group(self.process, timeout_s)
         return self.output()
 
     def wait(self, timeout_s):
