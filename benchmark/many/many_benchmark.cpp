@@ -6,6 +6,8 @@
 //   collision two stones free in the air, head-on and oblique, at several speeds and steps:
 //             momentum error and energy change per collision (peers; ours: not yet)
 //   cluster   a stone thrown into a 3 x 3 block: energy history, overlap, time to sleep
+//   drops     ours only: N = 1, 10, 100, 361 stones dropped apart, each bouncing to rest: cost
+//             per event and per advance_to as N grows (issue 15: at most log N per event)
 // Writes into --out DIR: many_results.csv (every figure, long format), many_tables.md,
 // many_settings.md, many_cost.dat (for the plot). scripts/benchmark.sh --many-only runs it and
 // writes docs/benchmarks/many.md.
@@ -314,6 +316,49 @@ ClusterRun run_cluster(ManyMethod& m, const ManyScene& s, double dt) {
   return r;
 }
 
+// ---- drops (events against N) --------------------------------------------------------
+
+struct DropsRun {
+  std::string not_run, failure;
+  long events = 0;      // reported over the run (deterministic: same in every repetition)
+  long work = -1;       // integration and search work over the run
+  double run_ns = NAN;  // the whole run, median of the repetitions
+  int reps = 0;
+  std::size_t asleep_end = 0;
+};
+
+DropsRun run_drops(ManyMethod& m, const ManyScene& s, double dt, double budget_s) {
+  DropsRun r;
+  const long steps = steps_of(s, dt);
+  std::vector<double> runs;
+  double spent = 0.0;
+  while (runs.size() < 3 || (spent < budget_s && runs.size() < 200)) {
+    try {
+      m.reset(s, dt);
+    } catch (const ContactNotRun& e) {
+      r.not_run = e.what();
+      return r;
+    }
+    const long events0 = m.events_reported();
+    if (events0 < 0) {
+      r.not_run = "no events";
+      return r;
+    }
+    const auto t0 = Clock::now();
+    for (long k = 0; k < steps; ++k) m.advance();
+    const double ns = std::chrono::duration<double, std::nano>(Clock::now() - t0).count();
+    runs.push_back(ns);
+    spent += ns * 1e-9;
+    r.events = m.events_reported() - events0;
+  }
+  r.run_ns = median(runs);
+  r.reps = static_cast<int>(runs.size());
+  r.work = m.work_done();
+  for (std::size_t i = 0; i < s.stones.size(); ++i) r.asleep_end += m.asleep(i) ? 1 : 0;
+  r.failure = m.failure();
+  return r;
+}
+
 std::string time_or_never(double t, bool has_sleep) {
   if (!has_sleep) return "no sleep";
   if (std::isnan(t)) return "never";
@@ -538,6 +583,52 @@ int run(const Options& o) {
          << time_or_never(r.all_asleep_s, m->has_sleep()) << " | "
          << (std::isnan(r.last_moving_s) ? "never" : num(r.last_moving_s) + " s") << " | "
          << r.off_board << " | " << time_text(r.cost_ns) << " |\n";
+    }
+  }
+
+  // ---- drops: what an event costs as N grows (ours: the engines have no events to count)
+  const double drops_duration = 1.0;
+  md << "\n### Events against the number of stones (ours)\n\n"
+     << "N stones dropped flat from 2 to 20 mm (staggered heights) onto a 19 x 19 grid of "
+        "twice the Go pitch, so that no two touch; each bounces and comes to rest exactly; "
+        "stone-stone contact on (every awake stone is checked against its neighbours). "
+     << drops_duration
+     << " s at dt = 1/60 s; run time: median over repetitions. Cost per event is the whole "
+        "run's time over the events reported (impacts, contact changes, rests), so it includes "
+        "the flights sampled between events. The issue's goal: cost per event grows at most as "
+        "log N.\n\n"
+     << "| N | events | work | asleep at end | run time | per advance_to | per event | per event / "
+        "N = 1's | log2(N) + 1 |\n|---|---|---|---|---|---|---|---|---|\n";
+  double per_event_1 = NAN;
+  for (auto& m : methods) {
+    if (m->is_peer()) continue;
+    for (const int n : counts) {
+      const ManyScene s = dropped_grid(n, drops_duration);
+      std::cerr << "many_benchmark: drops N = " << n << ", " << m->name() << "\n";
+      const DropsRun r = run_drops(*m, s, dt60, o.quick ? 0.1 : 1.0);
+      const std::string sec = "drops";
+      if (!r.not_run.empty()) {
+        csv.note(sec, s.name, m->name(), dt60, n, "not_run", r.not_run);
+        md << "| " << n << " | " << r.not_run << " | | | | | | | |\n";
+        continue;
+      }
+      const long steps = steps_of(s, dt60);
+      const double per_event = r.events > 0 ? r.run_ns / r.events : NAN;
+      if (std::isnan(per_event_1)) per_event_1 = per_event;
+      csv.put(sec, s.name, m->name(), dt60, n, "events", r.events);
+      csv.put(sec, s.name, m->name(), dt60, n, "work_done", r.work);
+      csv.put(sec, s.name, m->name(), dt60, n, "asleep_at_end", r.asleep_end);
+      csv.put(sec, s.name, m->name(), dt60, n, "run_ns", r.run_ns);
+      csv.put(sec, s.name, m->name(), dt60, n, "repetitions", r.reps);
+      csv.put(sec, s.name, m->name(), dt60, n, "cost_per_advance_ns", r.run_ns / steps);
+      csv.put(sec, s.name, m->name(), dt60, n, "cost_per_event_ns", per_event);
+      if (!r.failure.empty()) csv.note(sec, s.name, m->name(), dt60, n, "failure", r.failure);
+      char ratio[64];
+      std::snprintf(ratio, sizeof ratio, "%.3g | %.3g", per_event / per_event_1,
+                    std::log2(static_cast<double>(n)) + 1.0);
+      md << "| " << n << " | " << r.events << " | " << r.work << " | " << r.asleep_end << " / " << n
+         << " | " << time_text(r.run_ns) << " | " << time_text(r.run_ns / steps) << " | "
+         << time_text(per_event) << " | " << ratio << " |\n";
     }
   }
 

@@ -24,7 +24,7 @@ struct ManyStone {
   Eigen::Vector3d omega_world = Eigen::Vector3d::Zero();
 };
 
-enum class SceneKind { rest, collision, cluster };
+enum class SceneKind { rest, collision, cluster, drops };
 
 struct ManyScene {
   std::string name;
@@ -65,6 +65,9 @@ class ManyMethod {
   virtual std::string failure() const { return ""; }
   // Integration and search work since the reset (ours: the World's counters); -1: not known.
   virtual long work_done() const { return -1; }
+  // Events the method reported since the reset (ours: impacts, contact changes, rests); -1: an
+  // engine without events.
+  virtual long events_reported() const { return -1; }
   virtual std::vector<Setting> settings() const = 0;
   virtual std::string version() const = 0;
 };
@@ -90,6 +93,10 @@ ManyScene two_stone_collision(Colour target, double speed_mps, double impact_par
                               double dt_s);
 // A black stone thrown into a 3 x 3 block of resting stones around the board's centre.
 ManyScene thrown_into_cluster(double duration_s);
+// n stones (row by row on a 19 x 19 grid of twice the Go pitch, on a board made large enough,
+// so no two ever touch) dropped flat from staggered heights: each bounces on its own and comes
+// to rest. Measures what an event costs as the number of stones grows.
+ManyScene dropped_grid(int n, double duration_s);
 
 // Measures (many_scenes.cpp).
 // Total energy of stone i (J): 1/2 m v^2 + 1/2 w.I_world w - m g.x.

@@ -154,6 +154,33 @@ ManyScene thrown_into_cluster(double duration_s) {
   return sc;
 }
 
+ManyScene dropped_grid(int n, double duration_s) {
+  ManyScene sc = base_scene();
+  sc.name = "drops_" + std::to_string(n);
+  sc.kind = SceneKind::drops;
+  sc.description = std::to_string(n) +
+                   " stones dropped flat from 2 to 20 mm (staggered heights) onto a 19 x 19 "
+                   "grid of twice the Go pitch (44 mm x 47.4 mm), so that no two touch";
+  sc.duration_s = duration_s;
+  sc.needs_stone_contact = false;
+  const double pitch_x = 2.0 * kPitchX, pitch_y = 2.0 * kPitchY;
+  sc.board.size_x_m = 19.0 * pitch_x + 0.2;
+  sc.board.size_y_m = 19.0 * pitch_y + 0.2;
+  const Eigen::Vector3d zero = Eigen::Vector3d::Zero();
+  for (int k = 0; k < n; ++k) {
+    const int i = k % 19, j = k / 19;
+    const Colour c = colour_at(i, j);
+    const StoneSpec& spec = c == Colour::black ? sc.black : sc.white;
+    // Heights by the golden ratio's multiples: spread evenly, no two stones' events coincide.
+    const double frac = std::fmod(0.6180339887498949 * (k + 1), 1.0);
+    const double drop_m = 0.002 + 0.018 * frac;
+    sc.stones.push_back(make_stone_state(
+        spec, c, Eigen::Vector3d((i - 9) * pitch_x, (j - 9) * pitch_y, spec.half_height_m + drop_m),
+        Eigen::Quaterniond::Identity(), zero, zero));
+  }
+  return sc;
+}
+
 double stone_energy(const ManyScene& scene, std::size_t i, const ContactSample& s) {
   const StoneSpec& spec = scene.spec(i);
   const Eigen::Matrix3d r = s.orientation.normalized().toRotationMatrix();

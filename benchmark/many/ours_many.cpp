@@ -117,6 +117,7 @@ class OursMany : public ManyMethod {
            c.plane_contact_steps + c.plane_contact_rhs + c.nonsmooth_steps + c.nonsmooth_impulses +
            c.pair_searches + c.pair_search_steps + c.pair_gap_checks;
   }
+  long events_reported() const override { return world_->counters().events; }
 
  private:
   std::optional<virtual_go::World> world_;

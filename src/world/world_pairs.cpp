@@ -112,17 +112,32 @@ double World::kinetic_energy_bound(std::size_t k, double dt_s) {
                                                                 : on_table;
 }
 
-double World::point_speed_bound(std::size_t i, double dt_s) {
+Bounds World::reach_bounds(std::size_t i, double dt_s) {
+  // The lens lies within its rim sphere about the centre, and the centre moves at most at
+  // sqrt(2 K / m) with K the kinetic energy bound (its island's, whose members trade energy).
+  // In flight this holds across board contacts too, and the flight's swept box up to its board
+  // contact lies within this box.
+  const WorldBodyModel& body = body_at(i);
+  const double centre_speed = std::sqrt(2.0 * shared_kinetic_energy_bound(i, dt_s) /
+                                        body.setup().model.mass_properties().mass());
+  return sphere_bounds(stones_.hot(i).state.position_world,
+                       body.lens().half_width() + centre_speed * dt_s);
+}
+
+double World::shared_kinetic_energy_bound(std::size_t i, double dt_s) {
   // An island's members may trade energy, so a member gets the island's.
-  double kinetic_j = 0.0;
   if (IslandRun* run = island_of(i)) {
+    double kinetic_j = 0.0;
     for (std::size_t k = 0; k < run->members.size(); ++k) {
       if (run->in[k]) kinetic_j += kinetic_energy_bound(index_of(run->members[k]), dt_s);
     }
-  } else {
-    kinetic_j = kinetic_energy_bound(i, dt_s);
+    return kinetic_j;
   }
-  return point_speed_from_energy(body_at(i), kinetic_j);
+  return kinetic_energy_bound(i, dt_s);
+}
+
+double World::point_speed_bound(std::size_t i, double dt_s) {
+  return point_speed_from_energy(body_at(i), shared_kinetic_energy_bound(i, dt_s));
 }
 
 std::optional<GapBoundMotion> World::gap_bound_motion(std::size_t i, double dt_s) {
@@ -220,12 +235,34 @@ World::Interaction World::next_interaction(double t_s, long work_limit) {
   const double dt = t_s - time_;
   const auto is_awake = [&](std::size_t k) { return stones_.hot(k).mode != StoneMode::resting; };
 
-  // Stage 1, board search: each flight's board contact up to t_s (as advance_flight does); the
-  // flight is closed form up to there. The pass stops at it: the flight after the bounce is
-  // searched against the other stones in the next pass. Each awake stone's bounds for the pass
-  // go into the broad phase (resting stones are in it already).
+  // Stage 1a, stones alone: an awake stone (not in an island) whose reach over the whole call
+  // meets no other stone's bounds (a resting stone's rim sphere, an awake stone's reach) cannot
+  // touch another stone before t_s. Its board events need not end the pass: step_stones takes
+  // it through them like a stone of a world without stone contact. Otherwise every bounce of
+  // every stone would end a pass that visits every awake stone, and an event would cost O(N).
+  // The reach keeps standing for it in the broad phase, so no later candidate pair names it
+  // (every bound of stage 1b lies within the stone's reach).
+  alone_.assign(stones_.size(), 0);
+  for (const std::size_t i : awake) {
+    alone_[i] = stones_.record(i).island ? 0 : 1;
+    broad_phase_.update(i, reach_bounds(i, dt), true);
+  }
+  {
+    const long tests_before = broad_phase_.counters().bound_tests;
+    for (const auto& pair : broad_phase_.candidate_pairs()) {
+      alone_[pair.first] = 0;
+      alone_[pair.second] = 0;
+    }
+    counters_.broad_phase_tests += broad_phase_.counters().bound_tests - tests_before;
+  }
+
+  // Stage 1b, board search of the other stones: each flight's board contact up to t_s (as
+  // advance_flight does); the flight is closed form up to there. The pass stops at it: the
+  // flight after the bounce is searched against the other stones in the next pass. Each such
+  // stone's bounds for the pass go into the broad phase (resting stones are in it already).
   flight_end_.resize(stones_.size());
   for (const std::size_t i : awake) {
+    if (alone_[i]) continue;
     StoneHot& h = stones_.hot(i);
     StoneRecord& r = stones_.record(i);
     const double rim_m = body_at(i).lens().half_width();
@@ -249,8 +286,7 @@ World::Interaction World::next_interaction(double t_s, long work_limit) {
                                        std::max(0.0, flight_end_[i] - time_), rim_m),
                           true);
     } else {
-      broad_phase_.update(
-          i, sphere_bounds(h.state.position_world, rim_m + point_speed_bound(i, dt) * dt), true);
+      broad_phase_.update(i, reach_bounds(i, dt), true);
     }
   }
 

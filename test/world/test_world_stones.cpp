@@ -207,6 +207,63 @@ TEST(WorldStones, AFullBoardAddedStoneByStoneCostsNothing) {
   EXPECT_EQ(world.counters().work(), removed.work());
 }
 
+// Stones far apart cost what each costs alone (issue 15: an event's cost may grow at most as
+// log N). 25 stones on every other point of the inner board (44 x 47.4 mm apart; far enough
+// from the edges that no bound lets them fall to the table within a step), dropped flat
+// from staggered heights (2 to 12 mm), every other one spinning: with stone contact on, no
+// stone's bounce, contact phase or rest may end a pass for the others, so each advance_to is one
+// pass and nothing is searched between stones; the motions are those of the world without stone
+// contact, which advances each stone alone, bit for bit, event for event.
+TEST(WorldStones, StonesFarApartCostWhatTheyCostAlone) {
+  vg::WorldConfig with_contact = config(0.5);
+  with_contact.stone_contact = true;
+  vg::WorldConfig without_contact = config(0.5);
+  without_contact.stone_contact = false;
+  vg::World on(with_contact, std::vector<vg::RigidBodyState>{}, 0.0);
+  vg::World off(without_contact, std::vector<vg::RigidBodyState>{}, 0.0);
+  std::vector<vg::WorldEvent> events_on, events_off;
+  int k = 0;
+  for (int column = 5; column <= 13; column += 2) {
+    for (int row = 5; row <= 13; row += 2, ++k) {
+      const Vector3d x = vg::go_point_world(with_contact.board, vg::GoPoint{column, row});
+      const double lift = 0.002 + 0.01 * std::fmod(0.6180339887498949 * (k + 1), 1.0);
+      vg::RigidBodyState s = at(Vector3d(x.x(), x.y(), kHalfHeight + lift));
+      const StoneColor color = k % 2 ? StoneColor::white : StoneColor::black;
+      if (k % 2) s.angular_momentum_world = Vector3d(0, 0, 1e-7);  // spinning about its axis
+      on.add_stone(color, s, 0.0, events_on);
+      off.add_stone(color, s, 0.0, events_off);
+    }
+  }
+  ASSERT_EQ(on.stone_count(), 25u);
+  const vg::WorldCounters start = on.counters();
+  const long calls = 90;  // 1.5 s at 1/60 s
+  for (long n = 1; n <= calls; ++n) {
+    on.advance_to(n / 60.0, events_on);
+    off.advance_to(n / 60.0, events_off);
+    for (std::size_t i = 0; i < on.stone_count(); ++i) {
+      ASSERT_TRUE(on.state(i) == off.state(i))
+          << "stone " << i << " at step " << n << ": " << on.state(i).position_world.transpose()
+          << " / " << off.state(i).position_world.transpose() << " stages " << on.counters().stages
+          << " pairs " << on.counters().pair_searches << " visited " << on.counters().stones_visited
+          << " / " << off.counters().stones_visited;
+    }
+  }
+  ASSERT_EQ(events_on.size(), events_off.size());
+  for (std::size_t e = 0; e < events_on.size(); ++e) {
+    EXPECT_EQ(events_on[e].time_s, events_off[e].time_s);
+    EXPECT_EQ(events_on[e].stone, events_off[e].stone);
+    EXPECT_TRUE(events_on[e].kind == events_off[e].kind);
+  }
+  EXPECT_GT(events_on.size(), 25u * 4);  // impacts and rests of every stone, at least
+  const vg::WorldCounters& c = on.counters();
+  EXPECT_EQ(c.stages - start.stages, calls);  // one pass per advance_to
+  EXPECT_EQ(c.pair_searches, 0);
+  EXPECT_EQ(c.pair_gap_checks, 0);
+  EXPECT_EQ(c.pair_candidates, 0);
+  EXPECT_GT(c.plane_contact_steps, 0);  // the spinning ones spun down on the board
+  EXPECT_TRUE(on.all_resting());
+}
+
 // Bad input names the field and changes nothing.
 TEST(WorldStones, BadInputChangesNothing) {
   vg::World world = empty_world();

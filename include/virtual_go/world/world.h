@@ -12,24 +12,26 @@
 // at (the world keeps the list of awake stones, as Box2D v3 keeps its awake set, so a call costs
 // the same with 0 or 361 resting stones), its pose frozen bit for bit, until a command wakes it.
 // Stones touch (docs/physics.md, "World", "Stone-stone contact in the world"): advance_to is a
-// pipeline of named stages repeated until t: (1) board search: each flight's board contact is
-// known up to t; (2) pair search: every awake stone against every other stone within the reach
-// its energy allows (world/broad_phase's grid: awake-awake and awake-resting pairs only, never
-// two resting stones; resting stones enter it when they come to rest): a flight against a flight or
-// a resting stone by the exact pair time of impact (closed form both), any pair with a stone in
-// contact (sliding, fallback, island) conservatively (the gap can close at most at the sum of the
-// point speeds their energies allow); (3) step: every awake stone to the earliest of the first pair
-// contact, the first board contact of a flight near another stone, the conservative safe time
-// and t (the per-stone models, as before); (4) resolve there: a pair impact (Stronge, the
-// config's stone_material; both stones get an `impact` naming the other; a resting stone hit
-// gets a `wake` first), or, for a sustained contact (a resting or touching partner, a rebound
-// below the Zeno speed, a stone in contact within 1 nm of another), one NonsmoothIsland for the
-// stones involved and the islands they are in. Members leave the island as the single-stone
-// fallback's stone does (flight, plane contact, rest); an island that rests, rests whole.
-// Not exact yet: a flight that begins inside a step (a lift-off, a separation from an island)
-// is searched against other stones from the end of that step; a command (set_state, remove)
-// on an island member dissolves its island into single-stone fallbacks (they rejoin at once if
-// they touch). Stones far from each other cost as before.
+// pipeline of named stages repeated until t: (1a) stones alone: a stone (not in an island)
+// whose reach over the whole call meets no other stone's bounds goes through its own events in
+// step 3 without ending a pass, so an event costs the same among 1 or 361 stones far apart;
+// (1b) board search: each other flight's board contact is known up to t; (2) pair search: every
+// awake stone against every other stone within the reach its energy allows (world/broad_phase's
+// grid: awake-awake and awake-resting pairs only, never two resting stones; resting stones enter it
+// when they come to rest): a flight against a flight or a resting stone by the exact pair time of
+// impact (closed form both), any pair with a stone in contact (sliding, fallback, island)
+// conservatively (the gap can close at most at the sum of the point speeds their energies allow);
+// (3) step: every awake stone to the earliest of the first pair contact, the first board contact of
+// a flight near another stone, the conservative safe time and t (the per-stone models, as before);
+// (4) resolve there: a pair impact (Stronge, the config's stone_material; both stones get an
+// `impact` naming the other; a resting stone hit gets a `wake` first), or, for a sustained contact
+// (a resting or touching partner, a rebound below the Zeno speed, a stone in contact within 1 nm of
+// another), one NonsmoothIsland for the stones involved and the islands they are in. Members leave
+// the island as the single-stone fallback's stone does (flight, plane contact, rest); an island
+// that rests, rests whole. Not exact yet: a flight that begins inside a step (a lift-off, a
+// separation from an island) is searched against other stones from the end of that step; a command
+// (set_state, remove) on an island member dissolves its island into single-stone fallbacks (they
+// rejoin at once if they touch). Stones far from each other cost as before.
 //
 // Stones live in a table (world/stone_table.h): each has a StoneId given once and never again,
 // refers to a body (world/world_body.h: its motion model and lens; one body per colour, or the
@@ -288,6 +290,11 @@ class World {
   double point_speed_bound(std::size_t i, double dt_s);
   // The kinetic energy bound of that rule for stone i alone (J).
   double kinetic_energy_bound(std::size_t i, double dt_s);
+  // That bound for stone i, or the sum over its island's members when it is in one (J).
+  double shared_kinetic_energy_bound(std::size_t i, double dt_s);
+  // Bounds (world, m) that awake stone i cannot leave over the next dt_s while its energy (its
+  // island's) does not rise: its rim sphere about every place its centre can reach.
+  Bounds reach_bounds(std::size_t i, double dt_s);
   // Bounds of stone i's motion over the pass for the second-order gap bound
   // (contact/pair_gap_bound.h): resting, flying, or in plane contact on the top face with a
   // cap (then its force bound); nothing for an island member or the fallback.
@@ -311,6 +318,9 @@ class World {
   std::size_t next_island_key_ = 0;
   BroadPhase broad_phase_{1.0, 1.0};  // cells: the board's spacing (set by the constructor)
   std::vector<double> flight_end_;    // per stone, scratch of the pair search (awake ones only)
+  // Per stone, scratch of the pair search: an awake stone whose bounds for the whole call meet
+  // no other stone's (next_interaction, stage 1).
+  std::vector<char> alone_;
 };
 
 }  // namespace virtual_go
