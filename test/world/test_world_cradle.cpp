@@ -369,8 +369,6 @@ TEST(WorldCradle, OnARealBoardTheRowComesToRest) {
 // -1.3e-19 m, all rest at 0.143 s (3 islands, 1410 island sub-steps, 147 passes). Before: an
 // overlap of 5.2e-8 m (an island member jumped into the striker within a pass of 6e-9 s) and
 // 637 islands, 816,917 passes: stones 1-10 nm from an island, neither joined nor let go.
-TEST(WorldCradle, OnARealBoardNoTwoStonesOverlap) {
-  EXPECT_GE(run_real_board().worst_gap, -1e-9);
-}
+TEST(WorldCradle, OnARealBoardNoTwoStonesOverlap) { EXPECT_GE(run_real_board().worst_gap, -1e-9); }
 
 }  // namespace
