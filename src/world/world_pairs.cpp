@@ -189,9 +189,13 @@ double World::second_order_step(std::size_t i, std::size_t j, const LensPairCont
   return bound.time_to(level_m);
 }
 
-double World::jump_bound(std::size_t i, double dt_s) {
+double World::jump_bound(std::size_t i) {
   if (stones_.hot(i).mode != StoneMode::nonsmooth_contact) return 0.0;
-  return kJumpSubSteps * point_speed_bound(i, dt_s) * config_.options.nonsmooth.step_s;
+  // Over the jump's own span: a stone that cannot leave the top face within it has the face as
+  // its floor (the table's would count the board's thickness as energy: a full board's island
+  // grew with every row it reached at the edge and swallowed the board).
+  const double span_s = kJumpSubSteps * config_.options.nonsmooth.step_s;
+  return point_speed_bound(i, span_s) * span_s;
 }
 
 void World::enter_fallen_asleep() {
@@ -236,7 +240,6 @@ World::Interaction World::next_interaction(double t_s, long work_limit) {
   std::vector<std::size_t> awake(stones_.awake().begin(), stones_.awake().end());
   std::sort(awake.begin(), awake.end());
   const double dt = t_s - time_;
-  pass_span_s_ = dt;
   const auto is_awake = [&](std::size_t k) { return stones_.hot(k).mode != StoneMode::resting; };
 
   // Stage 1, board search: each flight's board contact up to t_s (as advance_flight does); the
@@ -344,7 +347,7 @@ World::Interaction World::next_interaction(double t_s, long work_limit) {
     // (form_island), and the steps below keep that far from the others.
     const bool impulsive =
         hi.mode == StoneMode::nonsmooth_contact || hj.mode == StoneMode::nonsmooth_contact;
-    const double reach = jump_bound(i, dt) + (is_awake(j) ? jump_bound(j, dt) : 0.0);
+    const double reach = jump_bound(i) + (is_awake(j) ? jump_bound(j) : 0.0);
     if (impulsive && c.gap_m <= kJoinGapM + 2.0 * reach) {
       // Approaching or not: a stone an island pushes can start to approach its neighbour at
       // any instant of the pass (let be, it was pushed into the neighbour within the pass).
@@ -480,15 +483,15 @@ void World::form_island(const std::vector<std::size_t>& seeds,
   }
   // The island keeps its members within kKeepJoinFactor times the distance the pair search
   // joins at (2 jumps and the margin), from the members' energy now (it never rises).
+  NonsmoothContactOptions options = config_.options.nonsmooth;
+  const double span_s = kJumpSubSteps * options.step_s;  // as jump_bound
   double kinetic_j = 0.0;
-  for (const std::size_t i : members) kinetic_j += kinetic_energy_bound(i, pass_span_s_);
+  for (const std::size_t i : members) kinetic_j += kinetic_energy_bound(i, span_s);
   double speed = 0.0;
   for (const std::size_t i : members)
     speed = std::max(speed, point_speed_from_energy(body_at(i), kinetic_j));
-  NonsmoothContactOptions options = config_.options.nonsmooth;
   options.keep_margin_m =
-      std::max(options.keep_margin_m,
-               kKeepJoinFactor * (2.0 * kJumpSubSteps * speed * options.step_s + kJoinGapM));
+      std::max(options.keep_margin_m, kKeepJoinFactor * (2.0 * speed * span_s + kJoinGapM));
   std::vector<IslandBody> bodies;
   std::vector<StoneId> ids;
   for (std::size_t k = 0; k < members.size(); ++k) {

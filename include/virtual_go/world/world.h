@@ -300,7 +300,7 @@ class World {
   // How far a point of stone i may jump within a pass beyond its speed bound times the pass's
   // length (m): 0 but for a stone an island or the fallback moves (its samples between lattice
   // points are partial sub-steps with position corrections, or the next lattice state itself).
-  double jump_bound(std::size_t i, double dt_s);
+  double jump_bound(std::size_t i);
   // The broad phase holds every resting stone (its rim sphere, entered when it comes to rest)
   // and every awake stone (its bounds for the pass, entered by the pair search).
   void enter_fallen_asleep();
@@ -317,7 +317,6 @@ class World {
   std::size_t next_island_key_ = 0;
   BroadPhase broad_phase_{1.0, 1.0};  // cells: the board's spacing (set by the constructor)
   std::vector<double> flight_end_;    // per stone, scratch of the pair search (awake ones only)
-  double pass_span_s_ = 0.0;          // the last pair search's span (t - time), s
 };
 
 }  // namespace virtual_go
