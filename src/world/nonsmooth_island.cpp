@@ -88,6 +88,7 @@ void validate_nonsmooth_options(const NonsmoothContactOptions& o) {
   require_positive("nonsmooth/plane_margin_m", o.plane_margin_m);
   require_positive("nonsmooth/rest_speed_m_s", o.rest_speed_m_s);
   require_positive("nonsmooth/rest_time_s", o.rest_time_s);
+  require_positive("nonsmooth/keep_margin_m", o.keep_margin_m);
   if (o.step_s > 0.01) {
     throw InvalidArgument("nonsmooth/step_s",
                           "nonsmooth/step_s must be at most 0.01 s, got " + format_value(o.step_s));
@@ -402,7 +403,8 @@ bool NonsmoothIsland::gather(const std::vector<RigidBodyState>& s, std::vector<M
   for (std::size_t a = 0; a < n; ++a) {
     if (!lattice_.active[a]) continue;
     for (std::size_t b = a + 1; b < n; ++b) {
-      const double keep_m = kKeepMarginFactor * options_.contact_margin_m;
+      const double keep_m =
+          std::max(options_.keep_margin_m, kKeepMarginFactor * options_.contact_margin_m);
       if (!lattice_.active[b] ||
           apart_by_bounds(members_[a].board, s[a], members_[b].board, s[b], keep_m)) {
         continue;

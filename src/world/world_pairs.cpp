@@ -28,6 +28,19 @@ namespace {
 constexpr double kJoinGapM = 1e-9;
 // A pair contact approaching slower than this (m/s) is touching, not an impact (as the board's).
 constexpr double kPairTouchingSpeedMps = 1e-9;
+// A stone an island (or the fallback) moves is sampled between its lattice points as a partial
+// sub-step with position corrections, or as the next lattice state itself, and a held sub-step
+// returns it to the previous lattice pose: within a pass it may jump, not just move at its
+// speed bound (a cradle row: 1.3e-7 m into a neighbour within a pass of 6e-9 s). Each of these
+// is at most about one sub-step's motion at the speed bound (the corrections remove overlaps
+// that one sub-step's motion made); this many sub-steps' worth is taken. An estimate, not a
+// proof: measured beyond the speed bound times the pass, at most 0.44 sub-steps' worth (the
+// real-board cradle with joins at 1 nm, 1.7 million island advances), 0 with this rule (the
+// cradle and test_world_crowd); the overlap checks of those tests watch it.
+constexpr double kJumpSubSteps = 2.0;
+// An island keeps its members this many times the distance within which the pair search joins
+// a stone to it (the speed bound over a pass may be larger than at the island's formation).
+constexpr double kKeepJoinFactor = 2.0;
 
 // A pair of closed-form motions touching without approaching is probed this many times over
 // the rest of the pass (at halving intervals from its end) for moving into each other.
@@ -177,8 +190,8 @@ std::optional<GapBoundMotion> World::gap_bound_motion(std::size_t i, double dt_s
   return motion;
 }
 
-double World::second_order_step(std::size_t i, std::size_t j, const LensPairContact& c,
-                                double dt_s) {
+double World::second_order_step(std::size_t i, std::size_t j, const LensPairContact& c, double dt_s,
+                                double level_m) {
   const std::optional<GapBoundMotion> mi = gap_bound_motion(i, dt_s);
   if (!mi) return 0.0;
   const std::optional<GapBoundMotion> mj = gap_bound_motion(j, dt_s);
@@ -188,7 +201,16 @@ double World::second_order_step(std::size_t i, std::size_t j, const LensPairCont
   const PairGapBound bound(body_at(i).lens(), lens_pose(hi.state), *mi, body_at(j).lens(),
                            lens_pose(hj.state), *mj, c.normal_world,
                            body_at(j).setup().gravity_world - body_at(i).setup().gravity_world);
-  return bound.time_to(0.5 * kJoinGapM);
+  return bound.time_to(level_m);
+}
+
+double World::jump_bound(std::size_t i) {
+  if (stones_.hot(i).mode != StoneMode::nonsmooth_contact) return 0.0;
+  // Over the jump's own span: a stone that cannot leave the top face within it has the face as
+  // its floor (the table's would count the board's thickness as energy: a full board's island
+  // grew with every row it reached at the edge and swallowed the board).
+  const double span_s = kJumpSubSteps * config_.options.nonsmooth.step_s;
+  return point_speed_bound(i, span_s) * span_s;
 }
 
 void World::enter_fallen_asleep() {
@@ -356,30 +378,48 @@ World::Interaction World::next_interaction(double t_s, long work_limit) {
     const LensPairContact c = lens_pair_distance(body_at(i).lens(), lens_pose(hi.state),
                                                  body_at(j).lens(), lens_pose(hj.state));
     ++counters_.pair_gap_checks;
+    // A stone an island or the fallback moves may jump within the pass (jump_bound): it joins
+    // the stones within twice its jump (and the join margin), which the island then keeps
+    // (form_island), and the steps below keep that far from the others.
+    const bool impulsive =
+        hi.mode == StoneMode::nonsmooth_contact || hj.mode == StoneMode::nonsmooth_contact;
+    const double reach = jump_bound(i) + (is_awake(j) ? jump_bound(j) : 0.0);
+    if (impulsive && c.gap_m <= kJoinGapM + 2.0 * reach) {
+      // Approaching or not: a stone an island pushes can start to approach its neighbour at
+      // any instant of the pass (let be, it was pushed into the neighbour within the pass).
+      consider(time_, Interaction::Kind::join, i, j, nullptr);
+      continue;
+    }
     if (c.gap_m <= kJoinGapM) {
-      // Touching: one island when they approach at the witness points, or when either is in
-      // the fallback or an island, approaching or not: a stone an island pushes can start to
-      // approach its neighbour at any instant of the pass, and no conservative step is left to
-      // bound when (its gap is below the step's aim); let be, it was pushed into the neighbour
-      // within the pass. A stone in plane contact touching without approaching (sliding past,
-      // rocking side by side) is let be for the pass (joining every such touch made a cradle
-      // row on the real board rest at 2.26 s instead of 0.14 s, in twice the passes).
+      // Touching: one island when they approach at the witness points or overlap. Touching
+      // without approaching (sliding past, rocking side by side) it is let be while the
+      // second-order bound keeps the overlap below half the join margin, and the pass ends
+      // there; without that bound, one island.
       const Eigen::Vector3d u_i =
           point_velocity_world(body_at(i).setup().model, hi.state, c.point_a_world);
       const Eigen::Vector3d u_j =
           point_velocity_world(body_at(j).setup().model, hj.state, c.point_b_world);
-      if (c.normal_world.dot(u_j - u_i) < -kPairTouchingSpeedMps || c.gap_m < -kJoinGapM ||
-          hi.mode == StoneMode::nonsmooth_contact || hj.mode == StoneMode::nonsmooth_contact)
+      if (c.normal_world.dot(u_j - u_i) < -kPairTouchingSpeedMps || c.gap_m < -kJoinGapM) {
         consider(time_, Interaction::Kind::join, i, j, nullptr);
+        continue;
+      }
+      const double let_be = second_order_step(i, j, c, dt, -0.5 * kJoinGapM);
+      if (!(let_be > 0.0)) {
+        consider(time_, Interaction::Kind::join, i, j, nullptr);
+      } else if (let_be < std::numeric_limits<double>::infinity()) {
+        consider(time_ + let_be, Interaction::Kind::none, 0, 0, nullptr);
+      }
       continue;
     }
     // The later of two guaranteed times: the first-order one (the gap closes at most at the sum
-    // of the point-speed bounds) and the second-order one (contact/pair_gap_bound.h: the exact
-    // present rate and bounded accelerations; a pair sliding side by side goes ~sqrt(gap)).
+    // of the point-speed bounds, less the jumps) and the second-order one
+    // (contact/pair_gap_bound.h: the exact present rate and bounded accelerations; a pair sliding
+    // side by side goes ~sqrt(gap); not for a stone that jumps).
     const double rate = point_speed_bound(i, dt) + (is_awake(j) ? point_speed_bound(j, dt) : 0.0);
-    const double first_order =
-        rate > 0.0 ? (c.gap_m - 0.5 * kJoinGapM) / rate : std::numeric_limits<double>::infinity();
-    const double step = std::max(first_order, second_order_step(i, j, c, dt));
+    const double first_order = rate > 0.0 ? (c.gap_m - 0.5 * kJoinGapM - reach) / rate
+                                          : std::numeric_limits<double>::infinity();
+    const double step =
+        std::max(first_order, impulsive ? 0.0 : second_order_step(i, j, c, dt, 0.5 * kJoinGapM));
     if (step < std::numeric_limits<double>::infinity()) {
       consider(time_ + step, Interaction::Kind::none, 0, 0, nullptr);
     }
@@ -477,6 +517,17 @@ void World::form_island(const std::vector<std::size_t>& seeds,
       add(seed, states.empty() ? stones_.hot(seed).state : states[k]);
     }
   }
+  // The island keeps its members within kKeepJoinFactor times the distance the pair search
+  // joins at (2 jumps and the margin), from the members' energy now (it never rises).
+  NonsmoothContactOptions options = config_.options.nonsmooth;
+  const double span_s = kJumpSubSteps * options.step_s;  // as jump_bound
+  double kinetic_j = 0.0;
+  for (const std::size_t i : members) kinetic_j += kinetic_energy_bound(i, span_s);
+  double speed = 0.0;
+  for (const std::size_t i : members)
+    speed = std::max(speed, point_speed_from_energy(body_at(i), kinetic_j));
+  options.keep_margin_m =
+      std::max(options.keep_margin_m, kKeepJoinFactor * (2.0 * speed * span_s + kJoinGapM));
   std::vector<IslandBody> bodies;
   std::vector<StoneId> ids;
   for (std::size_t k = 0; k < members.size(); ++k) {
@@ -487,7 +538,7 @@ void World::form_island(const std::vector<std::size_t>& seeds,
   auto run = std::make_unique<IslandRun>(
       IslandRun{next_island_key_++,
                 NonsmoothIsland(std::move(bodies), config_.board_material, config_.table_material,
-                                config_.stone_material, t_s, config_.options.nonsmooth),
+                                config_.stone_material, t_s, options),
                 ids, std::vector<char>(members.size(), 1), NonsmoothCounters{}});
   ++counters_.islands_formed;
   for (std::size_t k = 0; k < members.size(); ++k) {

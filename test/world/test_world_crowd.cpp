@@ -139,8 +139,7 @@ CrowdRecord run_crowd(Crowd& cr, double t_end) {
 }
 
 // The throw and the first 86 ms: the stone lands, slides into the block (the first island forms
-// at 64 ms) and the block's first stones join (13 islands by 86 ms). Not further: see
-// DISABLED_AStoneThrownIntoABlockComesToRest.
+// at 64 ms) and the block's first stones join. The whole run: AStoneThrownIntoABlockComesToRest.
 TEST(WorldCrowd, AStoneThrownIntoABlockNeverGainsEnergyNorOverlaps) {
   Crowd cr;
   ASSERT_EQ(cr.world.stone_count(), 10u);
@@ -154,14 +153,11 @@ TEST(WorldCrowd, AStoneThrownIntoABlockNeverGainsEnergyNorOverlaps) {
   EXPECT_GT(c.pair_impacts + c.islands_formed, 0);  // the block was hit
 }
 
-// DISABLED: the World's cost (src/world). Everything should rest in finite time; measured: the
-// run stalls after 87 ms: 45,000 passes (pipeline stages) and 130,000 pair gap checks in the
-// first 84 ms, then 10 to 20 s of wall time per simulated millisecond, growing (0.090 s reached
-// after 45 s, 199,274 passes, 36 islands; -O2 test build on a loaded machine); 7 minutes did
-// not reach 0.2 s. The conservative pair search between stones in contact (sliding, in islands)
-// steps to where a gap could close at the point-speed bound, so stones side by side take tiny
-// passes (docs/physics.md, "World", cost).
-TEST(WorldCrowd, DISABLED_AStoneThrownIntoABlockComesToRest) {
+// Everything rests in finite time, with the same promises all the way. Measured: all rest at
+// 0.726 s (9 islands, 6618 island sub-steps, 799 passes, 685 pair gap checks). Before (island
+// members' jumps unbounded, a stone 1-10 nm from an island neither joined nor let go, a plane
+// contact that stopped still without a rest): more than 10 s of CPU per simulated ms from 87 ms.
+TEST(WorldCrowd, AStoneThrownIntoABlockComesToRest) {
   Crowd cr;
   const CrowdRecord r = run_crowd(cr, 20.0);
   EXPECT_GT(r.rest_at, 0.0) << "not all at rest after 20 s";

@@ -75,6 +75,10 @@ struct NonsmoothContactOptions {
   double step_s = 1e-4;  // the sub-step h, s
   // Contacts with a gap up to this (m) count as touching: an approach there is stopped.
   double contact_margin_m = 1e-9;
+  // A member with another member within this (m) does not leave the island (at least 10
+  // contact margins). The World widens it to the distance within which it joins a stone to the
+  // island (world_pairs.cpp), so that a member let go is not joined again at once.
+  double keep_margin_m = 1e-8;
   // The exact flight must be contact-free this long (s) for a member to end in flight.
   double separation_time_s = 1e-3;
   // The plane model takes over only with the contact point this far (m) inside its region:

@@ -301,7 +301,13 @@ class World {
   std::optional<GapBoundMotion> gap_bound_motion(std::size_t i, double dt_s);
   // How long the gap of the pair (i, j), c = lens_pair_distance(i, j), stays above half the
   // join margin by the second-order bound; 0 when it does not apply.
-  double second_order_step(std::size_t i, std::size_t j, const LensPairContact& c, double dt_s);
+  // level_m: the gap it must stay above (default: half the join margin).
+  double second_order_step(std::size_t i, std::size_t j, const LensPairContact& c, double dt_s,
+                           double level_m);
+  // How far a point of stone i may jump within a pass beyond its speed bound times the pass's
+  // length (m): 0 but for a stone an island or the fallback moves (its samples between lattice
+  // points are partial sub-steps with position corrections, or the next lattice state itself).
+  double jump_bound(std::size_t i);
   // The broad phase holds every resting stone (its rim sphere, entered when it comes to rest)
   // and every awake stone (its bounds for the pass, entered by the pair search).
   void enter_fallen_asleep();
