@@ -133,8 +133,9 @@ Bounds World::reach_bounds(std::size_t i, double dt_s) {
   const WorldBodyModel& body = body_at(i);
   const double centre_speed = std::sqrt(2.0 * shared_kinetic_energy_bound(i, dt_s) /
                                         body.setup().model.mass_properties().mass());
+  // A stone an island or the fallback moves may also jump within a pass (jump_bound).
   return sphere_bounds(stones_.hot(i).state.position_world,
-                       body.lens().half_width() + centre_speed * dt_s);
+                       body.lens().half_width() + centre_speed * dt_s + jump_bound(i));
 }
 
 double World::shared_kinetic_energy_bound(std::size_t i, double dt_s) {
