@@ -22,12 +22,6 @@ class OursMany : public ManyMethod {
   std::string version() const override { return "virtual_go core (this tree)"; }
 
   void reset(const ManyScene& s, double dt) override {
-    // The cluster runs, but not in a benchmark's time: the conservative pair search between
-    // stones in contact takes very many tiny passes (docs/physics.md, "World"); 14 minutes (wall,
-    // shared machine) did not finish the 2 s scene at dt = 1/60 s. test/world/test_world_crowd
-    // checks the same scene's first 86 ms.
-    if (s.kind == SceneKind::cluster)
-      throw ContactNotRun("not run: too slow yet (> 14 min for 2 s)");
     const auto model_of = [](const StoneSpec& spec) {
       return virtual_go::MotionModel(
           virtual_go::MotionModelKind::rigid_body,
