@@ -184,9 +184,20 @@ class NonsmoothIsland {
     std::size_t a = 0, b = 0;
     Eigen::Vector3d point_world, normal_world;  // normal from a to b
   };
+  // A free island's totals at time_s, from which they follow in closed form (only the members'
+  // forces on each other act): P(t) = P + M g tau, L_O(t) = L_O + M (X tau + V tau^2 / 2) x g,
+  // tau = t - time_s (the centre of mass X, V falls freely).
+  struct FreeAnchor {
+    double time_s = 0.0, mass_kg = 0.0;
+    Eigen::Vector3d momentum_world = Eigen::Vector3d::Zero();
+    Eigen::Vector3d angular_momentum_world = Eigen::Vector3d::Zero();  // about the origin
+    Eigen::Vector3d centre_world = Eigen::Vector3d::Zero();
+    Eigen::Vector3d centre_velocity_world = Eigen::Vector3d::Zero();
+  };
   struct Step {
     std::vector<RigidBodyState> states;
     std::vector<MemberContacts> contacts;
+    std::optional<FreeAnchor> anchor;  // the step was free of the board: the anchor it kept
   };
   // A lattice point: the states handed out there, who is still in, the calm counts.
   struct Lattice {
@@ -194,11 +205,20 @@ class NonsmoothIsland {
     std::vector<char> active;
     std::vector<long> calm_steps;
     double energy_j = 0.0;  // of the active members
+    // A free island's round-off allowance over energy_j never takes it above this: the active
+    // members' energy when the island formed (or when members last left), lowered to the lowest
+    // lattice energy since plus one evaluation's round-off (energy_round_off).
+    double ceiling_j = 0.0;
+    std::optional<FreeAnchor> anchor;  // free since the anchor's time, members unchanged
     std::vector<IslandMemberEnd> left;
   };
 
-  Step sub_step(const std::vector<RigidBodyState>& from, double h_s, double energy_cap_j,
-                bool commit);
+  // One sub-step of h_s from `from`, which is at lattice(steps_).
+  Step sub_step(const Lattice& from, double h_s, bool commit);
+  FreeAnchor anchor_of(const std::vector<RigidBodyState>& s, double t_s) const;
+  // Sets the active members' momentum and angular momentum to the anchor's closed form at t_s
+  // (a uniform velocity, then a rigid rotation about the centre of mass).
+  void keep_free_totals(std::vector<RigidBodyState>& s, const FreeAnchor& anchor, double t_s) const;
   void project(std::vector<RigidBodyState>& s, std::vector<MemberContacts>& mc, bool commit,
                int& sweeps);
   // The contacts within the margin of the poses in s; false if any overlaps beyond tolerance.
