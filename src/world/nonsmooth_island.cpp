@@ -92,6 +92,12 @@ void validate_nonsmooth_options(const NonsmoothContactOptions& o) {
     throw InvalidArgument("nonsmooth/step_s",
                           "nonsmooth/step_s must be at most 0.01 s, got " + format_value(o.step_s));
   }
+  require_positive("nonsmooth/zeno_height_m", o.zeno_height_m);
+  if (o.max_pair_impacts < 0) {
+    throw InvalidArgument(
+        "nonsmooth/max_pair_impacts",
+        "nonsmooth/max_pair_impacts must be at least 0, got " + std::to_string(o.max_pair_impacts));
+  }
   if (o.max_sweeps < 1) {
     throw InvalidArgument("nonsmooth/max_sweeps", "nonsmooth/max_sweeps must be at least 1, got " +
                                                       std::to_string(o.max_sweeps));
@@ -106,6 +112,7 @@ NonsmoothIsland::NonsmoothIsland(std::vector<IslandBody> bodies,
     : board_plastic_(plastic(board_material)),
       table_plastic_(plastic(table_material)),
       stone_plastic_(plastic(stone_material)),
+      stone_material_(stone_material),
       options_(options),
       t0_(t0_s),
       reached_(t0_s) {
@@ -131,6 +138,12 @@ NonsmoothIsland::NonsmoothIsland(std::vector<IslandBody> bodies,
   }
   lattice_.active.assign(members_.size(), 1);
   lattice_.calm_steps.assign(members_.size(), 0);
+  // Contacts between members that approach at formation are impacts at that instant (all gaps
+  // within the margin close together: the vanishing gaps of Newton's cradle), before any flight.
+  std::vector<MemberContacts> contacts(members_.size());
+  std::vector<PairContact> pairs;
+  gather(lattice_.states, contacts, pairs, true);
+  resolve_pair_impacts(lattice_.states, contacts, pairs, free_of_board(contacts), true);
   lattice_.energy_j = energy(lattice_.states, lattice_.active);
   lattice_.ceiling_j = lattice_.energy_j;
 }
@@ -305,6 +318,48 @@ void NonsmoothIsland::restore_angular_momentum(std::vector<RigidBodyState>& s,
     s[i].velocity_world += d_omega.cross(s[i].position_world - rigid.centre_world);
     s[i].angular_momentum_world +=
         members_[i].setup.model.inertia_world(s[i].orientation) * d_omega;
+  }
+}
+
+void NonsmoothIsland::resolve_pair_impacts(std::vector<RigidBodyState>& s,
+                                           std::vector<MemberContacts>& mc,
+                                           const std::vector<PairContact>& pairs, bool free,
+                                           bool commit) {
+  // With e* = 0 the impacts are the plastic impulses of the sweeps (step 3's second part).
+  if (pairs.empty() || !(stone_material_.restitution > 0.0)) return;
+  const double zeno_mps =
+      free ? 0.0
+           : std::sqrt(2.0 * members_.front().setup.gravity_world.norm() * options_.zeno_height_m);
+  const double impact_mps = std::max(kApproachToleranceMps, zeno_mps);
+  for (int impacts = 0; impacts < options_.max_pair_impacts; ++impacts) {
+    const PairContact* fastest = nullptr;
+    double fastest_u_n = -impact_mps;
+    for (const PairContact& p : pairs) {
+      const double u_n = p.normal_world.dot(
+          point_velocity_world(members_[p.b].setup.model, s[p.b], p.point_world) -
+          point_velocity_world(members_[p.a].setup.model, s[p.a], p.point_world));
+      if (u_n < fastest_u_n) {  // ties: the first in the pair order
+        fastest_u_n = u_n;
+        fastest = &p;
+      }
+    }
+    if (!fastest) return;
+    const PairContact& p = *fastest;
+    const MotionModel &ma = members_[p.a].setup.model, &mb = members_[p.b].setup.model;
+    PairImpact impact =
+        resolve_pair_impact(ma, s[p.a], mb, s[p.b], p.point_world, p.normal_world, stone_material_);
+    if (impact.normal_velocity_after_mps < zeno_mps) {
+      impact = resolve_pair_impact(ma, s[p.a], mb, s[p.b], p.point_world, p.normal_world,
+                                   stone_plastic_);
+    }
+    s[p.a] = impact.state_a;
+    s[p.b] = impact.state_b;
+    mc[p.a].loaded = mc[p.b].loaded = true;
+    if (commit) {
+      ++counters_.impulses;
+      ++counters_.pair_impulses;
+      ++counters_.pair_impacts;
+    }
   }
 }
 
@@ -497,8 +552,10 @@ NonsmoothIsland::Step NonsmoothIsland::sub_step(const Lattice& lattice_from, dou
     keep_free_totals(s, *out.anchor, lattice(steps_) + h_s);
   }
 
-  // 3. Plastic impulses at the contacts within the margin, Gauss-Seidel until none approaches:
-  // the board's first (they carry the weight), then the pairs.
+  // 3. Impacts between members, the fastest approach first, at the material's e* (above the
+  // impact speed; see the header), then plastic impulses at the contacts within the margin,
+  // Gauss-Seidel until none approaches: the board's first (they carry the weight), then the pairs.
+  if (!hold) resolve_pair_impacts(s, out.contacts, pairs, free, commit);
   int velocity_sweeps = 0;
   for (; !hold && velocity_sweeps < options_.max_sweeps; ++velocity_sweeps) {
     bool acted = false;

@@ -41,6 +41,8 @@ World::World(const WorldConfig& config, const std::vector<RigidBodyState>& initi
              double t0_s)
     : config_((validate_world_config(config), config)),
       broad_phase_(config_.board.spacing_x_m, config_.board.spacing_y_m) {
+  // The islands' impacts between stones follow the world's Zeno rule (one source).
+  config_.options.nonsmooth.zeno_height_m = config_.zeno_height_m;
   bodies_.emplace_back(WorldBody{config.motion.model, config.shape, std::nullopt},
                        config.motion.gravity_world, config.board);
   reset(initial_states, t0_s);

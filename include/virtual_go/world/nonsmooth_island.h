@@ -10,7 +10,20 @@
 //      translates both along the pair's normal (lens_pair_distance), split by inverse mass, except
 //      that a stone pressed by the correction into a board contact it lies on does not move (the
 //      other takes all of it: a stack converges in one sweep instead of halving per sweep);
-//   3. velocities: a plastic impulse at every contact within the margin that still approaches
+//   3. velocities: first the impacts between members (the rule for simultaneous contacts,
+//      docs/physics.md "Islands"): of the member contacts within the margin, the one approaching
+//      fastest takes the two-body impact at the stone material's e* and mu (resolve_pair_impact,
+//      Stronge: dE <= 0), both members are updated, and again, until none approaches faster than
+//      the impact speed: round-off (1e-12 m/s) in an island free of the board, where gravity
+//      cancels in every relative motion; on the board sqrt(2 |g| zeno_height_m) (4.4 mm/s), and an
+//      impact whose rebound would be slower than that is taken plastic (the Zeno rule of
+//      contact/impact.h), so that a stack pressed by gravity does not bounce at every sub-step.
+//      Each impact has dE <= 0, so the sequence never adds energy; for a row of equal stones it
+//      is Newton's cradle (contact/simultaneous_impacts.h). The same impacts are resolved once
+//      at the island's formation, on the states it is given, before any flight (contacts that
+//      close together close at one instant: the cradle's vanishing gaps). With e* = 0 there are
+//      none (the plastic impulses below are the same law). Then a plastic impulse at every
+//      contact within the margin that still approaches
 //      (board: resolve_impact with e* = 0; pair: resolve_pair_impact with e* = 0, both with
 //      Coulomb friction integrated through the impulse, so each impulse can only remove energy),
 //      Gauss-Seidel until none approaches (the board's contacts first; after 8 plain sweeps a
@@ -85,6 +98,11 @@ struct NonsmoothContactOptions {
   // ... for this long (s).
   double rest_time_s = 0.01;
   int max_sweeps = 32;  // Gauss-Seidel sweeps over the contacts' velocities per sub-step
+  // Rebounds between members lower than this (m) under gravity are plastic in an island on the
+  // board (the Zeno rule of contact/impact.h); the World sets it from WorldConfig::zeno_height_m.
+  double zeno_height_m = 1e-6;
+  // Two-body impacts between members per sub-step, at most (then the plastic sweeps go on).
+  int max_pair_impacts = 10000;
 };
 
 // Throws InvalidArgument naming the option ("nonsmooth/step_s", ...).
@@ -99,12 +117,13 @@ struct NonsmoothCounters {
   long impulses = 0;     // plastic impulses applied (board and pairs)
   long projections = 0;  // position corrections (board and pairs)
   long energy_guard_scalings = 0;
-  long separation_searches = 0;    // exact time-of-impact searches for the separated test
-  long pair_impulses = 0;          // of `impulses`, those between two members
-  long pair_projections = 0;       // of `projections`, those between two members
-  long pair_distances = 0;         // lens_pair_distance evaluations
-  long projection_sweeps = 0;      // Gauss-Seidel sweeps over the positions (committed steps)
-  long velocity_sweeps = 0;        // Gauss-Seidel sweeps over the velocities (committed steps)
+  long separation_searches = 0;  // exact time-of-impact searches for the separated test
+  long pair_impulses = 0;        // of `impulses`, those between two members
+  long pair_impacts = 0;       // of `pair_impulses`, two-body impacts at the material's e* (step 3)
+  long pair_projections = 0;   // of `projections`, those between two members
+  long pair_distances = 0;     // lens_pair_distance evaluations
+  long projection_sweeps = 0;  // Gauss-Seidel sweeps over the positions (committed steps)
+  long velocity_sweeps = 0;    // Gauss-Seidel sweeps over the velocities (committed steps)
   int most_projection_sweeps = 0;  // in one committed sub-step
   int most_velocity_sweeps = 0;    // in one committed sub-step
   long holds = 0;  // sub-steps whose touching members kept their poses (lift not payable)
@@ -215,6 +234,9 @@ class NonsmoothIsland {
 
   // One sub-step of h_s from `from`, which is at lattice(steps_).
   Step sub_step(const Lattice& from, double h_s, bool commit);
+  // Step 3's impacts between members (the rule for simultaneous contacts), on s.
+  void resolve_pair_impacts(std::vector<RigidBodyState>& s, std::vector<MemberContacts>& mc,
+                            const std::vector<PairContact>& pairs, bool free, bool commit);
   FreeAnchor anchor_of(const std::vector<RigidBodyState>& s, double t_s) const;
   // Sets the active members' momentum and angular momentum to the anchor's closed form at t_s
   // (a uniform velocity, then a rigid rotation about the centre of mass).
@@ -255,7 +277,7 @@ class NonsmoothIsland {
   IslandOutcome outcome(double t) const;
 
   std::vector<Member> members_;
-  ContactMaterial board_plastic_, table_plastic_, stone_plastic_;
+  ContactMaterial board_plastic_, table_plastic_, stone_plastic_, stone_material_;
   NonsmoothContactOptions options_;
   double t0_;
   long steps_ = 0;
