@@ -325,11 +325,12 @@ void NonsmoothIsland::resolve_pair_impacts(std::vector<RigidBodyState>& s,
                                            std::vector<MemberContacts>& mc,
                                            const std::vector<PairContact>& pairs, bool free,
                                            bool commit) {
-  // With e* = 0 the impacts are the plastic impulses of the sweeps (step 3's second part).
-  if (pairs.empty() || !(stone_material_.restitution > 0.0)) return;
+  // With e* = 0 the impacts are the plastic impulses of the sweeps (step 3's second part). Free
+  // of the board, the World resolves every impact between flights itself (exact times, the
+  // fastest approach first) and hands an island only touching contacts: none here.
+  if (free || pairs.empty() || !(stone_material_.restitution > 0.0)) return;
   const double zeno_mps =
-      free ? 0.0
-           : std::sqrt(2.0 * members_.front().setup.gravity_world.norm() * options_.zeno_height_m);
+      std::sqrt(2.0 * members_.front().setup.gravity_world.norm() * options_.zeno_height_m);
   const double impact_mps = std::max(kApproachToleranceMps, zeno_mps);
   for (int impacts = 0; impacts < options_.max_pair_impacts; ++impacts) {
     const PairContact* fastest = nullptr;

@@ -1,9 +1,10 @@
 // The fixed-step nonsmooth fallback for an island: several stones touching each other and the
 // board or the table, where no exact model exists (a stone resting on another, a row pushed
 // along the board, a pile; also a single stone on an edge, a corner or a side face). Issue 15
-// item 7; docs/physics.md, "World" and "Stone–stone contact". A Moreau-Jean scheme with e = 0 and
-// Coulomb friction (Moreau 1988; Jean 1999; Acary & Brogliato, "Numerical Methods for Nonsmooth
-// Dynamical Systems", 2008), built from the exact pieces, per sub-step h:
+// item 7; docs/physics.md, "World" and "Stone–stone contact". A Moreau-Jean scheme with e = 0 (but
+// for the impacts between members, step 3) and Coulomb friction (Moreau 1988; Jean 1999; Acary &
+// Brogliato, "Numerical Methods for Nonsmooth Dynamical Systems", 2008), built from the exact
+// pieces, per sub-step h:
 //   1. exact free flight of every member over h (closed form, ExactMotion);
 //   2. positions out of every overlap, Gauss-Seidel over all contacts until none is left: a
 //      board or table contact translates the stone along its normal by the overlap; a stone pair
@@ -44,9 +45,14 @@
 // the island about its centre of mass, and step 4 and the samples scale only the motion beyond
 // the island's rigid motion (V + Omega x r, I_i Omega: it carries all of P and L, and its kinetic
 // energy adds to the rest's); an energy excess within the energy's own round-off
-// (energy_round_off) is left there rather than scaled away (two members or more). Measured
-// (test_world_pair_impacts): P and L to 1.1e-14 and 9.4e-15 relative over 0.1 s, the sub-steps'
-// round-off. What is NOT exact: first order in h, a new impact inside the island is plastic, no
+// (energy_round_off) is left there rather than scaled away (two members or more), but never
+// above the energy at formation nor above the lowest lattice energy plus one evaluation's
+// round-off (Lattice::ceiling_j), so it cannot walk upward. P and L are set at every sub-step to
+// the closed form of the centre of mass's free fall from the anchor (FreeAnchor: the last time
+// members or freedom changed), so the sub-steps' round-off does not add up. Measured
+// (test_world_pair_impacts, 0.1 s): P and L to 5.8e-16 and 1.0e-15 relative (1.1e-14 and
+// 9.4e-15 re-integrated step by step). What is NOT exact: first order in h, an impact of a
+// member on the board inside the island is plastic, no
 // rolling resistance or spinning friction, rest by a speed threshold held over a time. What is
 // kept: no handed-out state overlaps (board and table gap >= -1e-12 m, pair gap >= -1e-12 m), no
 // energy is created, every impulse stays in Coulomb's cone.
@@ -164,8 +170,9 @@ class NonsmoothIsland {
  public:
   // Every body's state at t0_s (world time line, s); they touch each other or the board (or
   // nearly). Contacts: board_material on the board's features, table_material on the table,
-  // stone_material between members (all taken plastic, e* = 0). Throws InvalidArgument naming
-  // the field ("island/bodies", "island/gravity", "contact/stone/friction", ...).
+  // stone_material between members (its e* in the impacts of step 3, else plastic, e* = 0); the
+  // impacts between members that approach at t0_s are resolved at once. Throws InvalidArgument
+  // naming the field ("island/bodies", "island/gravity", "contact/stone/friction", ...).
   NonsmoothIsland(std::vector<IslandBody> bodies, const ContactMaterial& board_material,
                   const ContactMaterial& table_material, const ContactMaterial& stone_material,
                   double t0_s, const NonsmoothContactOptions& options = NonsmoothContactOptions());
