@@ -328,7 +328,9 @@ void NonsmoothIsland::resolve_pair_impacts(std::vector<RigidBodyState>& s,
   // With e* = 0 the impacts are the plastic impulses of the sweeps (step 3's second part). Free
   // of the board, the World resolves every impact between flights itself (exact times, the
   // fastest approach first) and hands an island only touching contacts: none here.
-  if (free || pairs.empty() || !(stone_material_.restitution > 0.0)) return;
+  if (!options_.pair_impacts || free || pairs.empty() || !(stone_material_.restitution > 0.0)) {
+    return;
+  }
   const double zeno_mps =
       std::sqrt(2.0 * members_.front().setup.gravity_world.norm() * options_.zeno_height_m);
   const double impact_mps = std::max(kApproachToleranceMps, zeno_mps);
