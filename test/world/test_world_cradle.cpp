@@ -5,7 +5,7 @@
 // each impact by Newton's 1-D law, the fastest approach first: the rule of
 // contact/simultaneous_impacts.h, checked directly in test/contact/test_simultaneous_impacts.cpp).
 //
-// The World's rule for contacts that close at one instant (docs/physics.md, "Islands"): the
+// The World's rule for contacts that close at one instant (docs/physics.md, "World", the fallback): the
 // fastest approach first, each by the two-body Stronge impact (dE <= 0 each, so the sequence
 // never adds energy): the pair search breaks ties of time so while both stones fly, and a
 // contact with a stone on the board (resting, sliding) goes to an island, which resolves the

@@ -13,7 +13,7 @@
 //      other takes all of it: a stack converges in one sweep instead of halving per sweep);
 //   3. velocities: first (with options.pair_impacts) the impacts between members (the rule for
 //      simultaneous contacts,
-//      docs/physics.md "Islands"): of the member contacts within the margin, the one approaching
+//      docs/physics.md "World", the fallback): of the member contacts within the margin, the one approaching
 //      fastest takes the two-body impact at the stone material's e* and mu (resolve_pair_impact,
 //      Stronge: dE <= 0), both members are updated, and again, until none approaches faster than
 //      the Zeno speed sqrt(2 |g| zeno_height_m) (4.4 mm/s); an impact whose rebound would be
