@@ -6,8 +6,8 @@ namespace virtual_go {
 namespace {
 
 std::vector<IslandBody> one_body(const BoardDistance& board, const MotionSetup& setup,
-                                 const RigidBodyState& state) {
-  return {IslandBody{board, setup, state}};
+                                 const RigidBodyState& state, bool board_enabled) {
+  return {IslandBody{board, setup, state, board_enabled}};
 }
 
 }  // namespace
@@ -16,10 +16,10 @@ NonsmoothContact::NonsmoothContact(const BoardDistance& board, const MotionSetup
                                    const ContactMaterial& board_material,
                                    const ContactMaterial& table_material,
                                    const RigidBodyState& state, double t0_s,
-                                   const NonsmoothContactOptions& options)
+                                   const NonsmoothContactOptions& options, bool board_enabled)
     // One member has no stone contact: the stone material is never used (the board's stands in).
-    : island_(one_body(board, setup, state), board_material, table_material, board_material, t0_s,
-              options) {}
+    : island_(one_body(board, setup, state, board_enabled), board_material, table_material,
+              board_material, t0_s, options) {}
 
 NonsmoothOutcome NonsmoothContact::advance(double t_end_s, long max_steps) {
   const IslandOutcome island = island_.advance(t_end_s, max_steps);

@@ -93,6 +93,12 @@ void validate_nonsmooth_options(const NonsmoothContactOptions& o) {
     throw InvalidArgument("nonsmooth/step_s",
                           "nonsmooth/step_s must be at most 0.01 s, got " + format_value(o.step_s));
   }
+  require_positive("nonsmooth/zeno_height_m", o.zeno_height_m);
+  if (o.max_pair_impacts < 0) {
+    throw InvalidArgument(
+        "nonsmooth/max_pair_impacts",
+        "nonsmooth/max_pair_impacts must be at least 0, got " + std::to_string(o.max_pair_impacts));
+  }
   if (o.max_sweeps < 1) {
     throw InvalidArgument("nonsmooth/max_sweeps", "nonsmooth/max_sweeps must be at least 1, got " +
                                                       std::to_string(o.max_sweeps));
@@ -107,6 +113,7 @@ NonsmoothIsland::NonsmoothIsland(std::vector<IslandBody> bodies,
     : board_plastic_(plastic(board_material)),
       table_plastic_(plastic(table_material)),
       stone_plastic_(plastic(stone_material)),
+      stone_material_(stone_material),
       options_(options),
       t0_(t0_s),
       reached_(t0_s) {
@@ -132,7 +139,14 @@ NonsmoothIsland::NonsmoothIsland(std::vector<IslandBody> bodies,
   }
   lattice_.active.assign(members_.size(), 1);
   lattice_.calm_steps.assign(members_.size(), 0);
+  // Contacts between members that approach at formation are impacts at that instant (all gaps
+  // within the margin close together: the vanishing gaps of Newton's cradle), before any flight.
+  std::vector<MemberContacts> contacts(members_.size());
+  std::vector<PairContact> pairs;
+  gather(lattice_.states, contacts, pairs, true);
+  resolve_pair_impacts(lattice_.states, contacts, pairs, free_of_board(contacts), true);
   lattice_.energy_j = energy(lattice_.states, lattice_.active);
+  lattice_.ceiling_j = lattice_.energy_j;
 }
 
 double NonsmoothIsland::member_energy(std::size_t i, const RigidBodyState& s) const {
@@ -308,6 +322,92 @@ void NonsmoothIsland::restore_angular_momentum(std::vector<RigidBodyState>& s,
   }
 }
 
+void NonsmoothIsland::resolve_pair_impacts(std::vector<RigidBodyState>& s,
+                                           std::vector<MemberContacts>& mc,
+                                           const std::vector<PairContact>& pairs, bool free,
+                                           bool commit) {
+  // With e* = 0 the impacts are the plastic impulses of the sweeps (step 3's second part). Free
+  // of the board, the World resolves every impact between flights itself (exact times, the
+  // fastest approach first) and hands an island only touching contacts: none here.
+  if (!options_.pair_impacts || free || pairs.empty() || !(stone_material_.restitution > 0.0)) {
+    return;
+  }
+  const double zeno_mps =
+      std::sqrt(2.0 * members_.front().setup.gravity_world.norm() * options_.zeno_height_m);
+  const double impact_mps = std::max(kApproachToleranceMps, zeno_mps);
+  for (int impacts = 0; impacts < options_.max_pair_impacts; ++impacts) {
+    const PairContact* fastest = nullptr;
+    double fastest_u_n = -impact_mps;
+    for (const PairContact& p : pairs) {
+      const double u_n = p.normal_world.dot(
+          point_velocity_world(members_[p.b].setup.model, s[p.b], p.point_world) -
+          point_velocity_world(members_[p.a].setup.model, s[p.a], p.point_world));
+      if (u_n < fastest_u_n) {  // ties: the first in the pair order
+        fastest_u_n = u_n;
+        fastest = &p;
+      }
+    }
+    if (!fastest) return;
+    const PairContact& p = *fastest;
+    const MotionModel &ma = members_[p.a].setup.model, &mb = members_[p.b].setup.model;
+    PairImpact impact =
+        resolve_pair_impact(ma, s[p.a], mb, s[p.b], p.point_world, p.normal_world, stone_material_);
+    if (impact.normal_velocity_after_mps < zeno_mps) {
+      impact = resolve_pair_impact(ma, s[p.a], mb, s[p.b], p.point_world, p.normal_world,
+                                   stone_plastic_);
+    }
+    s[p.a] = impact.state_a;
+    s[p.b] = impact.state_b;
+    mc[p.a].loaded = mc[p.b].loaded = true;
+    if (commit) {
+      ++counters_.impulses;
+      ++counters_.pair_impulses;
+      ++counters_.pair_impacts;
+    }
+  }
+}
+
+NonsmoothIsland::FreeAnchor NonsmoothIsland::anchor_of(const std::vector<RigidBodyState>& s,
+                                                       double t_s) const {
+  FreeAnchor a;
+  a.time_s = t_s;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    if (!lattice_.active[i]) continue;
+    const double m = members_[i].setup.model.mass_properties().mass();
+    a.mass_kg += m;
+    a.momentum_world += m * s[i].velocity_world;
+    a.centre_world += m * s[i].position_world;
+  }
+  a.centre_world /= a.mass_kg;
+  a.centre_velocity_world = a.momentum_world / a.mass_kg;
+  a.angular_momentum_world = angular_momentum(s);
+  return a;
+}
+
+void NonsmoothIsland::keep_free_totals(std::vector<RigidBodyState>& s, const FreeAnchor& a,
+                                       double t_s) const {
+  // Every sub-step re-integrates the members, and its round-off (the flight's v + g h, the
+  // impulses' v -/+ P/m, the corrections' split) would add up over the sub-steps as a random
+  // walk (measured 1.1e-14 of the momentum over 0.1 s); set against the closed form from the
+  // anchor, only one sub-step's round-off is left.
+  const double tau = t_s - a.time_s;
+  const Eigen::Vector3d& g = members_.front().setup.gravity_world;
+  Eigen::Vector3d momentum = Eigen::Vector3d::Zero();
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    if (lattice_.active[i]) {
+      momentum += members_[i].setup.model.mass_properties().mass() * s[i].velocity_world;
+    }
+  }
+  const Eigen::Vector3d dv = (a.momentum_world + (a.mass_kg * tau) * g - momentum) / a.mass_kg;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    if (lattice_.active[i]) s[i].velocity_world += dv;
+  }
+  restore_angular_momentum(
+      s, a.angular_momentum_world +
+             a.mass_kg *
+                 (tau * a.centre_world + (0.5 * tau * tau) * a.centre_velocity_world).cross(g));
+}
+
 void NonsmoothIsland::project(std::vector<RigidBodyState>& s, std::vector<MemberContacts>& mc,
                               bool commit, int& sweeps) {
   const std::size_t n = s.size();
@@ -424,8 +524,10 @@ bool NonsmoothIsland::gather(const std::vector<RigidBodyState>& s, std::vector<M
   return clear;
 }
 
-NonsmoothIsland::Step NonsmoothIsland::sub_step(const std::vector<RigidBodyState>& from, double h_s,
-                                                double energy_cap_j, bool commit) {
+NonsmoothIsland::Step NonsmoothIsland::sub_step(const Lattice& lattice_from, double h_s,
+                                                bool commit) {
+  const std::vector<RigidBodyState>& from = lattice_from.states;
+  const double energy_cap_j = lattice_from.energy_j;
   const std::size_t n = from.size();
   Step out;
   out.states = from;
@@ -438,7 +540,6 @@ NonsmoothIsland::Step NonsmoothIsland::sub_step(const std::vector<RigidBodyState
 
   // 2. Out of every overlap.
   int projection_sweeps = 0;
-  const Eigen::Vector3d flight_angular_momentum = angular_momentum(s);
   project(s, out.contacts, commit, projection_sweeps);
   std::vector<PairContact> pairs;
   bool hold = false;
@@ -448,12 +549,18 @@ NonsmoothIsland::Step NonsmoothIsland::sub_step(const std::vector<RigidBodyState
     if (commit) ++counters_.projection_failures;
   }
   // Free of the board and the table, only the members' forces on each other act: momentum and
-  // angular momentum are kept (the flight keeps them; the corrections keep the momentum).
+  // angular momentum follow their closed forms (the flight keeps them; the corrections keep the
+  // momentum but not sum m x cross v, which the rigid rotation returns).
   const bool free = free_of_board(out.contacts);
-  if (!hold && free) restore_angular_momentum(s, flight_angular_momentum);
+  if (!hold && free) {
+    out.anchor = lattice_from.anchor ? *lattice_from.anchor : anchor_of(from, lattice(steps_));
+    keep_free_totals(s, *out.anchor, lattice(steps_) + h_s);
+  }
 
-  // 3. Plastic impulses at the contacts within the margin, Gauss-Seidel until none approaches:
-  // the board's first (they carry the weight), then the pairs.
+  // 3. Impacts between members, the fastest approach first, at the material's e* (above the
+  // impact speed; see the header), then plastic impulses at the contacts within the margin,
+  // Gauss-Seidel until none approaches: the board's first (they carry the weight), then the pairs.
+  if (!hold) resolve_pair_impacts(s, out.contacts, pairs, free, commit);
   int velocity_sweeps = 0;
   for (; !hold && velocity_sweeps < options_.max_sweeps; ++velocity_sweeps) {
     bool acted = false;
@@ -527,9 +634,12 @@ NonsmoothIsland::Step NonsmoothIsland::sub_step(const std::vector<RigidBodyState
   // of the board with two members or more, an excess within the energy's own round-off is left
   // (the exact flight, which no impulse changed, hands out such states too): scaling it away
   // would change the momenta. (One member has no motion beyond the rigid one: scaled as before.)
-  const bool round_off_only = free &&
-                              std::count(lattice_.active.begin(), lattice_.active.end(), 1) > 1 &&
-                              energy(s, lattice_.active) - energy_cap_j <= energy_round_off(s);
+  // That allowance never takes it above the energy at the island's formation (ceiling_j), so
+  // round-off cannot walk it upward over the sub-steps.
+  const double energy_now_j = energy(s, lattice_.active);
+  const bool round_off_only =
+      free && std::count(lattice_.active.begin(), lattice_.active.end(), 1) > 1 &&
+      energy_now_j - energy_cap_j <= energy_round_off(s) && energy_now_j <= lattice_from.ceiling_j;
   if (!hold && !round_off_only && energy(s, lattice_.active) > energy_cap_j) {
     if (commit) ++counters_.energy_guard_scalings;
     // Free: the motion relative to the rigid motion first (momenta kept), else all of it.
@@ -581,9 +691,10 @@ NonsmoothIsland::Step NonsmoothIsland::sub_step(const std::vector<RigidBodyState
 NonsmoothIsland::Lattice NonsmoothIsland::next_lattice() {
   const double t = lattice(steps_ + 1);
   const double h = t - lattice(steps_);
-  const Step step = sub_step(lattice_.states, h, lattice_.energy_j, true);
+  const Step step = sub_step(lattice_, h, true);
   Lattice next = lattice_;
   next.states = step.states;
+  next.anchor = step.anchor;
   next.left.clear();
   const std::size_t n = next.states.size();
   const NonsmoothContactOptions& o = options_;
@@ -686,6 +797,15 @@ NonsmoothIsland::Lattice NonsmoothIsland::next_lattice() {
     if (leaving[i]) next.active[i] = 0;
   }
   next.energy_j = energy(next.states, next.active);
+  if (!next.left.empty()) {
+    // The members still in form the island anew: their totals and energy from here.
+    next.anchor.reset();
+    next.ceiling_j = next.energy_j;
+  } else {
+    // The lowest energy so far plus one evaluation's round-off, never above the formation's:
+    // the allowance cannot walk upward (the impulses' losses are not won back by round-off).
+    next.ceiling_j = std::min(lattice_.ceiling_j, next.energy_j + energy_round_off(next.states));
+  }
   return next;
 }
 
@@ -748,7 +868,7 @@ IslandOutcome NonsmoothIsland::advance(double t_end_s, long max_steps) {
   ++counters_.samples;
   if (!ahead_) ahead_ = next_lattice();
   const double next_j = energy(ahead_->states, lattice_.active);
-  Step partial = sub_step(lattice_.states, since, lattice_.energy_j, false);
+  Step partial = sub_step(lattice_, since, false);
   IslandOutcome o;
   o.time_s = t_end_s;
   // Free of the board: as it is when its energy is next_j to round-off, else the motion
@@ -757,7 +877,8 @@ IslandOutcome NonsmoothIsland::advance(double t_end_s, long max_steps) {
   const double partial_j = energy(partial.states, lattice_.active);
   if (free && std::count(lattice_.active.begin(), lattice_.active.end(), 1) > 1 &&
       std::abs(partial_j - next_j) <= energy_round_off(partial.states) &&
-      partial_j <= lattice_.energy_j + energy_round_off(partial.states)) {
+      partial_j <= lattice_.energy_j + energy_round_off(partial.states) &&
+      partial_j <= lattice_.ceiling_j) {
     o.states = partial.states;
     for (std::size_t i = 0; i < o.states.size(); ++i) {
       if (!lattice_.active[i]) o.states[i] = lattice_.states[i];

@@ -41,6 +41,8 @@ World::World(const WorldConfig& config, const std::vector<RigidBodyState>& initi
              double t0_s)
     : config_((validate_world_config(config), config)),
       broad_phase_(config_.board.spacing_x_m, config_.board.spacing_y_m) {
+  // The islands' impacts between stones follow the world's Zeno rule (one source).
+  config_.options.nonsmooth.zeno_height_m = config_.zeno_height_m;
   bodies_.emplace_back(WorldBody{config.motion.model, config.shape, std::nullopt},
                        config.motion.gravity_world, config.board);
   reset(initial_states, t0_s);
@@ -541,12 +543,14 @@ void World::start_nonsmooth(std::size_t i, const RigidBodyState& state, double t
   StoneRecord& r = stones_.record(i);
   r.plane.reset();
   r.nonsmooth.emplace(body_at(i).board(), body_at(i).setup(), config_.board_material,
-                      config_.table_material, state, t_s, config_.options.nonsmooth);
+                      config_.table_material, state, t_s, config_.options.nonsmooth,
+                      config_.board_enabled);
   r.nonsmooth_seen = NonsmoothCounters{};
   stones_.set_mode(i, StoneMode::nonsmooth_contact);
   h.state = r.nonsmooth->lattice_state();
   h.state_time_s = t_s;
   WorldEvent& e = emit(i, t_s, WorldEventKind::slide, detail, h.state);
+  if (!config_.board_enabled) return;  // no board feature to name (an island dissolved in the air)
   const BoardContact c = contact ? *contact : body_at(i).board().nearest(h.state);
   e.has_feature = true;
   e.feature = c.feature;

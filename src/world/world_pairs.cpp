@@ -244,8 +244,14 @@ World::Interaction World::next_interaction(double t_s, long work_limit) {
   if (!config_.stone_contact || stones_.size() < 2 || stones_.all_resting()) return next;
   const auto consider = [&](double time_s, Interaction::Kind kind, std::size_t a, std::size_t b,
                             const PairTimeOfImpact* hit) {
-    if (time_s < next.time_s || (time_s == next.time_s && kind != Interaction::Kind::none &&
-                                 next.kind == Interaction::Kind::none)) {
+    // Impacts at one instant (touching stones struck together): the fastest approach first, the
+    // rule of contact/simultaneous_impacts.h (ties: the pair search's order).
+    const bool faster = time_s == next.time_s && kind == Interaction::Kind::impact &&
+                        next.kind == Interaction::Kind::impact && hit &&
+                        hit->approach_speed_mps > next.hit.approach_speed_mps;
+    if (time_s < next.time_s || faster ||
+        (time_s == next.time_s && kind != Interaction::Kind::none &&
+         next.kind == Interaction::Kind::none)) {
       next.time_s = time_s;
       next.kind = kind;
       next.a = a;

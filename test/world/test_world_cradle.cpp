@@ -5,15 +5,17 @@
 // each impact by Newton's 1-D law, the fastest approach first: the rule of
 // contact/simultaneous_impacts.h, checked directly in test/contact/test_simultaneous_impacts.cpp).
 //
-// The World's rule for contacts that close at one instant (docs/physics.md, "World"): one pair
-// per pass, in time order (ties by the pair search's order), each by the two-body Stronge impact
-// (dE <= 0 each, so the sequence never adds energy), as long as both stones fly; a contact with a
-// stone on the board (resting, sliding) is sustained and goes to an island, whose impulses are
-// plastic (e = 0). So:
+// The World's rule for contacts that close at one instant (docs/physics.md, "World", the fallback): the
+// fastest approach first, each by the two-body Stronge impact (dE <= 0 each, so the sequence
+// never adds energy): the pair search breaks ties of time so while both stones fly, and a
+// contact with a stone on the board (resting, sliding) goes to an island, which resolves the
+// impacts between its members by the same rule at the material's e* (plastic below the Zeno
+// speed) with NonsmoothContactOptions::pair_impacts, else plastically (the default). So:
 //   - a row flying together (no board; gravity cancels in the relative motion), stones face to
 //     face (cap on cap), is the analytic cradle;
-//   - a row on the board struck by a sliding stone is the plastic cradle (all move on together at
-//     v / (N + 1)), not the elastic one (DISABLED_ test below, with the figures);
+//   - a row on the board struck by a sliding stone is the analytic cradle too with the islands'
+//     pair impacts on (frictionless, e* = 1: the last stone leaves at the striker's speed), the
+//     plastic cradle (v / (N + 1) each) without;
 //   - a row on the board struck by a stone flying just above it: the lens's rims are sharp, so a
 //     striker that is any higher than the row's rims meets the first stone's top cap near its rim,
 //     where the cap's normal is tilted by ~45 degrees: it rides up over the row (not a cradle).
@@ -59,7 +61,10 @@ struct Cradle {
   std::vector<vg::WorldEvent> events;
   double t_hit = kApproach / kSpeed;  // the rims meet (no force acts along x before)
 
-  Cradle(int n, Striker how, double stone_restitution, double stone_friction, double board_friction)
+  // air_z_m: the row's centre height in the air (the board is switched off there; at 0 the row
+  // stands where the board's box would be).
+  Cradle(int n, Striker how, double stone_restitution, double stone_friction, double board_friction,
+         double air_z_m = 0.3, bool island_impacts = false)
       : world([&] {
           vg::WorldConfig c = config(0.5, board_friction, board_friction > 0 ? 5e-6 : 0.0,
                                      board_friction > 0 ? 15e-6 : 0.0);
@@ -69,6 +74,7 @@ struct Cradle {
           c.stone_material.friction = stone_friction;
           c.stone_material.rolling_resistance_m = 0.0;
           c.stone_material.spinning_friction_m = 0.0;
+          c.options.nonsmooth.pair_impacts = island_impacts;
           return vg::World(c, std::vector<vg::RigidBodyState>{}, 0.0);
         }()) {
     // On the board: flat, lowest points on it, centres 2a apart along x (rim touches rim, as
@@ -78,7 +84,7 @@ struct Cradle {
     // two caps' normals is a normal of the contact and round-off picks one), all at rest and so
     // falling together.
     const bool air = how == Striker::flying_in_the_air;
-    const double z = air ? 0.3 : kC, pitch = air ? 2 * kC : 2 * kA;
+    const double z = air ? air_z_m : kC, pitch = air ? 2 * kC : 2 * kA;
     const Eigen::Quaterniond q =
         air ? Eigen::Quaterniond(Eigen::AngleAxisd(M_PI / 2, Vector3d::UnitY()))
             : Eigen::Quaterniond::Identity();
@@ -190,9 +196,8 @@ std::vector<double> point_mass_cradle(int n, double v0, double e) {
 
 // A row flying together, struck along its line: the World's sequential pair impacts are the
 // cradle. e* = 1: N impacts, the last stone leaves at the striker's speed, every other stops;
-// e* < 1: the point-mass cradle with vanishing gaps. (Until an impact leaves a pair touching
-// without approaching, below 1e-9 m/s: the World then forms an island, plastic, and the row is
-// no longer the cradle for e* = 0.5 with 7 stones; tests below.)
+// e* < 1: the point-mass cradle with vanishing gaps. (7 stones, and rows that form islands:
+// tests below.)
 TEST(WorldCradle, ARowFlyingTogetherIsTheAnalyticCradle) {
   double worst_elastic = 0.0, worst_inelastic = 0.0;
   for (const int n : {1, 2, 3, 5}) {
@@ -222,8 +227,9 @@ TEST(WorldCradle, ARowFlyingTogetherIsTheAnalyticCradle) {
   EXPECT_LT(worst_inelastic, 1e-12);
 }
 
-// In the air, an impact that leaves two stones touching without approaching (e* = 0; or e* = 0.5
-// with 7 stones, where late impacts are that slow) makes an island of them (plastic); a stone in
+// In the air, an impact that leaves two stones touching without approaching (e* = 0; e* = 0.5
+// with 7 stones did, before ties of time went the fastest approach first) makes an island of
+// them (at e* = 0, plastic); a stone in
 // an island touching another joins it (approaching or not), and an island free of the board
 // keeps momentum and angular momentum (world/nonsmooth_island.h). No overlap, the momentum to
 // round-off, and for e* = 0 the point-mass cradle (v / (N + 1) each). (Before: overlaps of
@@ -236,22 +242,84 @@ TEST(WorldCradle, ARowFlyingTogetherWithPlasticContactsNeverOverlaps) {
     report("cradle in the air", n, Striker::flying_in_the_air, e, cr, r);
     EXPECT_GE(r.worst_pair_gap, -1e-9);
     EXPECT_LT(r.worst_momentum, 1e-14);
-    if (e > 0.0) continue;  // the point-mass cradle: DISABLED_ test below
+    if (e > 0.0) continue;  // the point-mass cradle: the test below
     const std::vector<double> expected = point_mass_cradle(n + 1, kSpeed, e);
     for (int i = 0; i <= n; ++i) EXPECT_NEAR(r.v[i], expected[i], 1e-12) << i;
   }
 }
 
-// DISABLED: not the cradle. e* = 0.5 with 7 stones in the air: once late impacts are slower than
-// 1e-9 m/s the touching pair becomes an island, and every later contact with an island member is
-// an island impulse, plastic (e = 0), not the two-body law at e* = 0.5: the row ends v_x 0.0595,
-// 0.0623 x 6, 0.0667 m/s instead of the point-mass cradle's (|dv| up to 5.3e-4 m/s). The cradle
-// needs the island's impulses at the material's restitution (or contact/simultaneous_impacts).
-TEST(WorldCradle, DISABLED_ARowFlyingTogetherWithPlasticContactsIsThePointMassCradle) {
+// e* = 0.5 with 7 stones in the air: the point-mass cradle to round-off. Impacts at one instant
+// go the fastest approach first (the World's pair search breaks ties of time so, and an island
+// resolves its members' impacts so, at its formation and in every sub-step), each by the
+// two-body law at the material's e*. Before (ties by the pair search's order; an island's
+// impulses plastic): the row ended v_x 0.0595, 0.0623 x 6, 0.0667 m/s, |dv| up to 2.1e-4 m/s.
+TEST(WorldCradle, ARowFlyingTogetherWithPlasticContactsIsThePointMassCradle) {
   Cradle cr(7, Striker::flying_in_the_air, 0.5, 0.3, 0.0);
   const CradleRun r = run_cradle(cr, false);
   const std::vector<double> expected = point_mass_cradle(8, kSpeed, 0.5);
-  for (int i = 0; i <= 7; ++i) EXPECT_NEAR(r.v[i], expected[i], 1e-12) << i;
+  double worst = 0.0;
+  for (int i = 0; i <= 7; ++i) {
+    EXPECT_NEAR(r.v[i], expected[i], 1e-12) << i;
+    worst = std::max(worst, std::abs(r.v[i] - expected[i]));
+  }
+  std::printf(
+      "[ measured ] 7 stones in the air, e* 0.5, against the point-mass cradle: max |dv| %.3g "
+      "m/s\n",
+      worst);
+}
+
+// A command on an island member in a world whose board is switched off dissolves the island
+// into single-stone fallbacks, which must not meet a board either: the row of 5 (e* = 0) stands
+// where the board's box would be (centres at z = 0), so a fallback with the board would push
+// its stone up out of the box and stop its fall. From the command on, the stones not commanded
+// feel only each other, so their momentum is P_c + M g (t - t_c) (the centre of mass falls
+// freely), and no event names a board feature. (Before: the fallbacks met the absent board.)
+TEST(WorldCradle, ADissolvedIslandWithTheBoardOffMeetsNoBoard) {
+  Cradle cr(5, Striker::flying_in_the_air, 0.0, 0.3, 0.0, 0.0);
+  const double dt = 1e-4;
+  std::vector<std::size_t> members;
+  int k = 1;
+  for (; k * dt <= cr.t_hit + 5e-3 && members.size() < 2; ++k) {
+    cr.world.advance_to(k * dt, cr.events);
+    members.clear();
+    for (std::size_t i = 0; i < cr.world.stone_count(); ++i) {
+      if (cr.world.mode(i) == vg::StoneMode::nonsmooth_contact) members.push_back(i);
+    }
+  }
+  ASSERT_GE(members.size(), 2u) << "no island formed";
+  const double t_c = cr.world.time();
+  const std::size_t commanded = members.front();
+  const vg::StoneId commanded_id = cr.world.id(commanded);
+  // The commanded stone goes far away, at rest.
+  const std::size_t events_before = cr.events.size();
+  cr.world.set_state(commanded, at(Vector3d(1.0, 1.0, 0.0)), t_c, cr.events);
+  const auto others = [&] {
+    Vector3d p = Vector3d::Zero();
+    double m = 0.0;
+    for (std::size_t i = 0; i < cr.world.stone_count(); ++i) {
+      if (cr.world.id(i) == commanded_id) continue;
+      const StoneFacts f = facts_of(cr.world, i);
+      p += f.mass_kg * cr.world.state(i).velocity_world;
+      m += f.mass_kg;
+    }
+    return std::pair{p, m};
+  };
+  const auto [p_c, m_others] = others();
+  double worst = 0.0;
+  for (int j = 1; j <= 50; ++j) {
+    const double t = t_c + j * dt;
+    cr.world.advance_to(t, cr.events);
+    const Vector3d expected = p_c + m_others * kGravity * (t - t_c);
+    worst = std::max(worst, (others().first - expected).norm() / (m_others * (kSpeed + kG * t)));
+  }
+  for (std::size_t e = events_before; e < cr.events.size(); ++e) {
+    EXPECT_FALSE(cr.events[e].has_feature) << "event " << e << " names a board feature";
+  }
+  std::printf(
+      "[ measured ] island of %zu dissolved at t = %.4f s with the board off: momentum error of "
+      "the others over 5 ms %.3g (relative)\n",
+      members.size(), t_c, worst);
+  EXPECT_LT(worst, 1e-13);
 }
 
 // On a frictionless board, whatever strikes the row: the energy never rises, the board pushes
@@ -304,21 +372,31 @@ TEST(WorldCradle, OnTheBoardASlidingStrikerNeverPushesOneStoneIntoAnother) {
   }
 }
 
-// DISABLED: the World's rule on the board is not the elastic cradle. Frictionless stones and
-// board, e* = 1, a sliding striker (rim meets rim on the centre line, a central impact): the
-// analytic cradle sends the last stone off at the striker's speed. The World hands a contact
-// with a stone on the board to an island, whose impulses are plastic (e = 0), so the whole row
-// moves on together: measured v_x = v / (N + 1) for every stone (0.1667, 0.125, 0.0833 m/s for
-// 2, 3, 5 stones), kinetic energy kept 1 / (N + 1). The elastic cradle on the board needs the
-// two-body impact (or contact/simultaneous_impacts) for stones the board holds.
-TEST(WorldCradle, DISABLED_OnTheBoardAnElasticFrictionlessRowIsTheAnalyticCradle) {
+// Frictionless stones and board, e* = 1, a sliding striker (rim meets rim on the centre line, a
+// central impact): the analytic cradle, the last stone leaves at the striker's speed. The World
+// hands a contact with a stone on the board to an island; with NonsmoothContactOptions::
+// pair_impacts its impacts between members above the Zeno speed (4.4 mm/s) take the material's
+// e*, the fastest approach first (world/nonsmooth_island.h, step 3). Without (the default, the
+// islands' impulses plastic): every stone moves on at v / (N + 1) (0.1667, 0.125, 0.0833 m/s for
+// 2, 3, 5 stones), kinetic energy kept 1/(N+1).
+TEST(WorldCradle, OnTheBoardAnElasticFrictionlessRowIsTheAnalyticCradle) {
+  double worst = 0.0;
   for (const int n : {2, 3, 5}) {
     SCOPED_TRACE(::testing::Message() << n << " stones");
-    Cradle cr(n, Striker::sliding_on_the_board, 1.0, 0.0, 0.0);
+    Cradle cr(n, Striker::sliding_on_the_board, 1.0, 0.0, 0.0, 0.3, true);
     const CradleRun r = run_cradle(cr, true);
-    for (int i = 0; i < n; ++i) EXPECT_NEAR(r.v[i], 0.0, 1e-6) << i;
-    EXPECT_NEAR(r.v[n], kSpeed, 1e-6);
+    for (int i = 0; i < n; ++i) {
+      EXPECT_NEAR(r.v[i], 0.0, 1e-12) << i;
+      worst = std::max(worst, std::abs(r.v[i]));
+    }
+    EXPECT_NEAR(r.v[n], kSpeed, 1e-12);
+    worst = std::max(worst, std::abs(r.v[n] - kSpeed));
+    EXPECT_NEAR(r.kinetic_kept, 1.0, 1e-12);
   }
+  std::printf(
+      "[ measured ] elastic frictionless cradle on the board (2, 3, 5 stones): max |dv| "
+      "%.3g m/s\n",
+      worst);
 }
 
 // With friction on the board (the default material) and between the stones, a row of 3 struck

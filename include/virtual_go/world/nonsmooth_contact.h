@@ -12,6 +12,9 @@
 //   rest       every speed stayed below rest_speed_m_s for rest_time_s (then v = L = 0 exactly);
 //   separated  no contact carried load in the sub-step and the exact time of impact finds the
 //              free flight from there contact-free for separation_time_s.
+// With board_enabled false (a World whose board is switched off, whose island was dissolved by a
+// command on another member) there is nothing to touch: the stone flies exactly for one sub-step
+// and ends `separated`.
 #pragma once
 
 #include <limits>
@@ -41,7 +44,8 @@ class NonsmoothContact {
   NonsmoothContact(const BoardDistance& board, const MotionSetup& setup,
                    const ContactMaterial& board_material, const ContactMaterial& table_material,
                    const RigidBodyState& state, double t0_s,
-                   const NonsmoothContactOptions& options = NonsmoothContactOptions());
+                   const NonsmoothContactOptions& options = NonsmoothContactOptions(),
+                   bool board_enabled = true);
 
   // Commits the sub-steps up to t_end_s (>= the time of the previous call) and returns the state
   // there, or the first end of the phase (then the phase is over: only that time may be asked

@@ -1,16 +1,32 @@
 // The fixed-step nonsmooth fallback for an island: several stones touching each other and the
 // board or the table, where no exact model exists (a stone resting on another, a row pushed
 // along the board, a pile; also a single stone on an edge, a corner or a side face). Issue 15
-// item 7; docs/physics.md, "World" and "Stone–stone contact". A Moreau-Jean scheme with e = 0 and
-// Coulomb friction (Moreau 1988; Jean 1999; Acary & Brogliato, "Numerical Methods for Nonsmooth
-// Dynamical Systems", 2008), built from the exact pieces, per sub-step h:
+// item 7; docs/physics.md, "World" and "Stone–stone contact". A Moreau-Jean scheme with e = 0 (but
+// for the impacts between members, step 3) and Coulomb friction (Moreau 1988; Jean 1999; Acary &
+// Brogliato, "Numerical Methods for Nonsmooth Dynamical Systems", 2008), built from the exact
+// pieces, per sub-step h:
 //   1. exact free flight of every member over h (closed form, ExactMotion);
 //   2. positions out of every overlap, Gauss-Seidel over all contacts until none is left: a
 //      board or table contact translates the stone along its normal by the overlap; a stone pair
 //      translates both along the pair's normal (lens_pair_distance), split by inverse mass, except
 //      that a stone pressed by the correction into a board contact it lies on does not move (the
 //      other takes all of it: a stack converges in one sweep instead of halving per sweep);
-//   3. velocities: a plastic impulse at every contact within the margin that still approaches
+//   3. velocities: first (with options.pair_impacts) the impacts between members (the rule for
+//      simultaneous contacts,
+//      docs/physics.md "World", the fallback): of the member contacts within the margin, the one approaching
+//      fastest takes the two-body impact at the stone material's e* and mu (resolve_pair_impact,
+//      Stronge: dE <= 0), both members are updated, and again, until none approaches faster than
+//      the Zeno speed sqrt(2 |g| zeno_height_m) (4.4 mm/s); an impact whose rebound would be
+//      slower is taken plastic (the Zeno rule of contact/impact.h), so that a stack pressed by
+//      gravity does not bounce at every sub-step. Only in an island touching the board or the
+//      table: free of both, the World resolves every impact between flights itself (exact
+//      times, the fastest approach first) and hands an island only touching contacts.
+//      Each impact has dE <= 0, so the sequence never adds energy; for a row of equal stones it
+//      is Newton's cradle (contact/simultaneous_impacts.h). The same impacts are resolved once
+//      at the island's formation, on the states it is given, before any flight (contacts that
+//      close together close at one instant: the cradle's vanishing gaps). With e* = 0 there are
+//      none (the plastic impulses below are the same law). Then a plastic impulse at every
+//      contact within the margin that still approaches
 //      (board: resolve_impact with e* = 0; pair: resolve_pair_impact with e* = 0, both with
 //      Coulomb friction integrated through the impulse, so each impulse can only remove energy),
 //      Gauss-Seidel until none approaches (the board's contacts first; after 8 plain sweeps a
@@ -31,9 +47,14 @@
 // the island about its centre of mass, and step 4 and the samples scale only the motion beyond
 // the island's rigid motion (V + Omega x r, I_i Omega: it carries all of P and L, and its kinetic
 // energy adds to the rest's); an energy excess within the energy's own round-off
-// (energy_round_off) is left there rather than scaled away (two members or more). Measured
-// (test_world_pair_impacts): P and L to 1.1e-14 and 9.4e-15 relative over 0.1 s, the sub-steps'
-// round-off. What is NOT exact: first order in h, a new impact inside the island is plastic, no
+// (energy_round_off) is left there rather than scaled away (two members or more), but never
+// above the energy at formation nor above the lowest lattice energy plus one evaluation's
+// round-off (Lattice::ceiling_j), so it cannot walk upward. P and L are set at every sub-step to
+// the closed form of the centre of mass's free fall from the anchor (FreeAnchor: the last time
+// members or freedom changed), so the sub-steps' round-off does not add up. Measured
+// (test_world_pair_impacts, 0.1 s): P and L to 5.8e-16 and 1.0e-15 relative (1.1e-14 and
+// 9.4e-15 re-integrated step by step). What is NOT exact: first order in h, an impact of a
+// member on the board inside the island is plastic, no
 // rolling resistance or spinning friction, rest by a speed threshold held over a time. What is
 // kept: no handed-out state overlaps (board and table gap >= -1e-12 m, pair gap >= -1e-12 m), no
 // energy is created, every impulse stays in Coulomb's cone.
@@ -89,6 +110,16 @@ struct NonsmoothContactOptions {
   // ... for this long (s).
   double rest_time_s = 0.01;
   int max_sweeps = 32;  // Gauss-Seidel sweeps over the contacts' velocities per sub-step
+  // Rebounds between members lower than this (m) under gravity are plastic in an island on the
+  // board (the Zeno rule of contact/impact.h); the World sets it from WorldConfig::zeno_height_m.
+  double zeno_height_m = 1e-6;
+  // Step 3's impacts between members at the stone material's e* (the rule for simultaneous
+  // contacts). Off by default: on, the real-board cradle row (test_world_cradle, e* 0.8, mu 0.3)
+  // ends with a stone rocking in plane contact past 5 s instead of resting at 0.19 s; off, every
+  // impulse between members is plastic.
+  bool pair_impacts = false;
+  // Two-body impacts between members per sub-step, at most (then the plastic sweeps go on).
+  int max_pair_impacts = 10000;
 };
 
 // Throws InvalidArgument naming the option ("nonsmooth/step_s", ...).
@@ -103,12 +134,13 @@ struct NonsmoothCounters {
   long impulses = 0;     // plastic impulses applied (board and pairs)
   long projections = 0;  // position corrections (board and pairs)
   long energy_guard_scalings = 0;
-  long separation_searches = 0;    // exact time-of-impact searches for the separated test
-  long pair_impulses = 0;          // of `impulses`, those between two members
-  long pair_projections = 0;       // of `projections`, those between two members
-  long pair_distances = 0;         // lens_pair_distance evaluations
-  long projection_sweeps = 0;      // Gauss-Seidel sweeps over the positions (committed steps)
-  long velocity_sweeps = 0;        // Gauss-Seidel sweeps over the velocities (committed steps)
+  long separation_searches = 0;  // exact time-of-impact searches for the separated test
+  long pair_impulses = 0;        // of `impulses`, those between two members
+  long pair_impacts = 0;       // of `pair_impulses`, two-body impacts at the material's e* (step 3)
+  long pair_projections = 0;   // of `projections`, those between two members
+  long pair_distances = 0;     // lens_pair_distance evaluations
+  long projection_sweeps = 0;  // Gauss-Seidel sweeps over the positions (committed steps)
+  long velocity_sweeps = 0;    // Gauss-Seidel sweeps over the velocities (committed steps)
   int most_projection_sweeps = 0;  // in one committed sub-step
   int most_velocity_sweeps = 0;    // in one committed sub-step
   long holds = 0;  // sub-steps whose touching members kept their poses (lift not payable)
@@ -149,8 +181,9 @@ class NonsmoothIsland {
  public:
   // Every body's state at t0_s (world time line, s); they touch each other or the board (or
   // nearly). Contacts: board_material on the board's features, table_material on the table,
-  // stone_material between members (all taken plastic, e* = 0). Throws InvalidArgument naming
-  // the field ("island/bodies", "island/gravity", "contact/stone/friction", ...).
+  // stone_material between members (its e* in the impacts of step 3, else plastic, e* = 0); the
+  // impacts between members that approach at t0_s are resolved at once. Throws InvalidArgument
+  // naming the field ("island/bodies", "island/gravity", "contact/stone/friction", ...).
   NonsmoothIsland(std::vector<IslandBody> bodies, const ContactMaterial& board_material,
                   const ContactMaterial& table_material, const ContactMaterial& stone_material,
                   double t0_s, const NonsmoothContactOptions& options = NonsmoothContactOptions());
@@ -188,9 +221,20 @@ class NonsmoothIsland {
     std::size_t a = 0, b = 0;
     Eigen::Vector3d point_world, normal_world;  // normal from a to b
   };
+  // A free island's totals at time_s, from which they follow in closed form (only the members'
+  // forces on each other act): P(t) = P + M g tau, L_O(t) = L_O + M (X tau + V tau^2 / 2) x g,
+  // tau = t - time_s (the centre of mass X, V falls freely).
+  struct FreeAnchor {
+    double time_s = 0.0, mass_kg = 0.0;
+    Eigen::Vector3d momentum_world = Eigen::Vector3d::Zero();
+    Eigen::Vector3d angular_momentum_world = Eigen::Vector3d::Zero();  // about the origin
+    Eigen::Vector3d centre_world = Eigen::Vector3d::Zero();
+    Eigen::Vector3d centre_velocity_world = Eigen::Vector3d::Zero();
+  };
   struct Step {
     std::vector<RigidBodyState> states;
     std::vector<MemberContacts> contacts;
+    std::optional<FreeAnchor> anchor;  // the step was free of the board: the anchor it kept
   };
   // A lattice point: the states handed out there, who is still in, the calm counts.
   struct Lattice {
@@ -198,11 +242,23 @@ class NonsmoothIsland {
     std::vector<char> active;
     std::vector<long> calm_steps;
     double energy_j = 0.0;  // of the active members
+    // A free island's round-off allowance over energy_j never takes it above this: the active
+    // members' energy when the island formed (or when members last left), lowered to the lowest
+    // lattice energy since plus one evaluation's round-off (energy_round_off).
+    double ceiling_j = 0.0;
+    std::optional<FreeAnchor> anchor;  // free since the anchor's time, members unchanged
     std::vector<IslandMemberEnd> left;
   };
 
-  Step sub_step(const std::vector<RigidBodyState>& from, double h_s, double energy_cap_j,
-                bool commit);
+  // One sub-step of h_s from `from`, which is at lattice(steps_).
+  Step sub_step(const Lattice& from, double h_s, bool commit);
+  // Step 3's impacts between members (the rule for simultaneous contacts), on s.
+  void resolve_pair_impacts(std::vector<RigidBodyState>& s, std::vector<MemberContacts>& mc,
+                            const std::vector<PairContact>& pairs, bool free, bool commit);
+  FreeAnchor anchor_of(const std::vector<RigidBodyState>& s, double t_s) const;
+  // Sets the active members' momentum and angular momentum to the anchor's closed form at t_s
+  // (a uniform velocity, then a rigid rotation about the centre of mass).
+  void keep_free_totals(std::vector<RigidBodyState>& s, const FreeAnchor& anchor, double t_s) const;
   void project(std::vector<RigidBodyState>& s, std::vector<MemberContacts>& mc, bool commit,
                int& sweeps);
   // The contacts within the margin of the poses in s; false if any overlaps beyond tolerance.
@@ -239,7 +295,7 @@ class NonsmoothIsland {
   IslandOutcome outcome(double t) const;
 
   std::vector<Member> members_;
-  ContactMaterial board_plastic_, table_plastic_, stone_plastic_;
+  ContactMaterial board_plastic_, table_plastic_, stone_plastic_, stone_material_;
   NonsmoothContactOptions options_;
   double t0_;
   long steps_ = 0;
