@@ -64,7 +64,8 @@ double PlaneContactLaws::event_value(Trigger trigger, const PlaneContactKinemati
 
 EventValues PlaneContactLaws::event_values(const PlaneContactKinematics& k,
                                            const PlaneContactMode& mode,
-                                           const PlaneContactForces* forces) const {
+                                           const PlaneContactForces* forces,
+                                           bool skip_clearance) const {
   // Which events the mode can meet: a sliding part can stop, a stuck part can start.
   EventValues e;
   auto activate = [&](Trigger t) { e.active[static_cast<int>(t)] = true; };
@@ -92,7 +93,8 @@ EventValues PlaneContactLaws::event_values(const PlaneContactKinematics& k,
     forces = &solved;
   }
   for (int i = 0; i < kTriggerCount; ++i) {
-    if (e.active[i]) e.g[i] = event_value(static_cast<Trigger>(i), k, mode, forces);
+    if (!e.active[i] || (skip_clearance && static_cast<Trigger>(i) == Trigger::clearance)) continue;
+    e.g[i] = event_value(static_cast<Trigger>(i), k, mode, forces);
   }
   return e;
 }

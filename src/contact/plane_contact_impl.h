@@ -100,6 +100,12 @@ class PlaneContact::Impl {
   Sample sample(double t) const;
   void start_mode(const ModeChoice& choice, double t, double energy_cap);
   void push_point(double t);
+  // A lower bound of the clearance at pose k from the last value found, by its contract
+  // (PlaneContactOptions::clearance_m): the value less the farthest a point of the lens can have
+  // moved, |x_G - x_anchor| + rho |b - b_anchor| with rho bounding |P - G| over the lens.
+  double clearance_floor(const PlaneContactKinematics& k) const;
+  void anchor_clearance(const PlaneContactKinematics& k,
+                        const plane_contact_detail::EventValues& g);
 
   // --- Events and outcomes (plane_contact.cpp)
   std::optional<PlaneContactOutcome> process(const PendingEvent& event);
@@ -117,7 +123,14 @@ class PlaneContact::Impl {
   double h_ = 0.0;                             // next trial step, s
   double energy_cap_ = 0.0;                    // guarded energy at t_, J
   plane_contact_detail::EventValues g_start_;  // event values at t_
-  mutable SegmentRing segments_;               // dense output is computed when first sampled
+  // The clearance where it was last evaluated (pose and value), and whether g_start_ holds only
+  // a positive lower bound of it (clearance_floor).
+  struct ClearanceAnchor {
+    Eigen::Vector3d center_world = Eigen::Vector3d::Zero(), axis_world = Eigen::Vector3d::Zero();
+    double value_m = 0.0;
+  } clearance_anchor_;
+  bool clearance_start_bounded_ = false;
+  mutable SegmentRing segments_;  // dense output is computed when first sampled
   std::optional<PendingEvent> pending_;
   double reached_ = 0.0;       // time of the last outcome
   double window_start_ = 0.0;  // state_at covers [window_start_, reached_]

@@ -123,8 +123,10 @@ class PlaneContactLaws {
 
   // --- Event functions (plane_contact_events.cpp)
   // Which events the mode can meet and their values at k; `forces` at k if already solved.
+  // `skip_clearance`: the clearance is left at 0 (the caller knows a positive bound of it).
   EventValues event_values(const PlaneContactKinematics& k, const PlaneContactMode& mode,
-                           const PlaneContactForces* forces = nullptr) const;
+                           const PlaneContactForces* forces = nullptr,
+                           bool skip_clearance = false) const;
   // The event function of `trigger` (positive while the mode holds).
   double event_value(Trigger trigger, const PlaneContactKinematics& k, const PlaneContactMode& mode,
                      const PlaneContactForces* forces = nullptr) const;

@@ -71,8 +71,39 @@ void PlaneContact::Impl::start_mode(const ModeChoice& choice, double t, double e
   t_ = t;
   energy_cap_ = std::min(energy_cap, laws_.energy(k));
   rates_ready_ = false;
-  if (choice.result == ModeChoice::Result::mode) g_start_ = laws_.event_values(k, mode_);
+  if (choice.result == ModeChoice::Result::mode) {
+    // The clearance as at a step's end (step_in): its bound while that stays positive.
+    const int clearance = static_cast<int>(Trigger::clearance);
+    const double clearance_bound = clearance_floor(k);
+    const bool bounded = clearance_bound > 0.0;
+    g_start_ = laws_.event_values(k, mode_, nullptr, bounded);
+    if (bounded) {
+      g_start_.g[clearance] = clearance_bound;
+      clearance_start_bounded_ = true;
+    } else {
+      anchor_clearance(k, g_start_);
+    }
+  }
   push_point(t);
+}
+
+double PlaneContact::Impl::clearance_floor(const PlaneContactKinematics& k) const {
+  const LensGeometry& lens = laws_.setup().lens;
+  // Every point of the lens lies within its bounding cylinder: |P - G| <= hypot(a, c). A turn
+  // of the axis from b0 to b1 moves such a point by at most |b1 - b0| |P - G| (the lens is
+  // axisymmetric, so the smallest rotation taking b0 to b1 carries it over).
+  const double reach = std::hypot(lens.half_width(), lens.half_height());
+  return clearance_anchor_.value_m - ((k.position_world - clearance_anchor_.center_world).norm() +
+                                      reach * (k.axis_world - clearance_anchor_.axis_world).norm());
+}
+
+void PlaneContact::Impl::anchor_clearance(const PlaneContactKinematics& k, const EventValues& g) {
+  clearance_start_bounded_ = false;
+  const int i = static_cast<int>(Trigger::clearance);
+  if (!g.active[i]) return;
+  clearance_anchor_.center_world = k.position_world;
+  clearance_anchor_.axis_world = k.axis_world;
+  clearance_anchor_.value_m = g.g[i];
 }
 
 void PlaneContact::Impl::refresh_references() {
@@ -195,7 +226,14 @@ void PlaneContact::Impl::step_in(Segment& segment) {
 
   // Events: a value positive at the step start and not positive at its end; or one already not
   // positive at the start that went negative (a part released the wrong way): at the start.
-  const EventValues g_end = laws_.event_values(k_end, mode_, &forces_end);
+  // The clearance (a distance to the board beside a stone on the table) is only evaluated once
+  // the motion since its last value could have used that value up: until then no sign change
+  // can have happened, and the bound stands in for it.
+  const int clearance = static_cast<int>(Trigger::clearance);
+  const double clearance_bound = g_start_.active[clearance] ? clearance_floor(k_end) : 0.0;
+  const bool bounded = clearance_bound > 0.0;
+  EventValues g_end = laws_.event_values(k_end, mode_, &forces_end, bounded);
+  if (bounded) g_end.g[clearance] = clearance_bound;
   std::optional<PendingEvent> earliest;
   for (int i = 0; i < kTriggerCount; ++i) {
     if (!g_end.active[i] || !g_start_.active[i]) continue;
@@ -207,12 +245,14 @@ void PlaneContact::Impl::step_in(Segment& segment) {
         const State y = state_in(segment, t);
         return laws_.event_value(trigger, laws_.decode(segment.mode, y, false), segment.mode);
       };
+      // The bracket's start from the clearance itself, not its bound (both positive).
+      const double g_begin = i == clearance && clearance_start_bounded_ ? g(segment.t_begin) : g0;
       if (!(segment.t_end > segment.t_begin)) {
         time = segment.t_begin;  // a step below the time's resolution: no bracket to search
       } else {
         boost::uintmax_t iterations = 100;
-        const auto bracket = boost::math::tools::toms748_solve(g, segment.t_begin, segment.t_end,
-                                                               g0, g1, TimeTolerance(), iterations);
+        const auto bracket = boost::math::tools::toms748_solve(
+            g, segment.t_begin, segment.t_end, g_begin, g1, TimeTolerance(), iterations);
         time = bracket.second;  // the first time found on the far side
       }
     } else if (g0 <= 0.0 && g1 < 0.0) {
@@ -254,6 +294,11 @@ void PlaneContact::Impl::step_in(Segment& segment) {
   }
   energy_cap_ = std::min(energy_cap_, energy_end);  // never raised, not even by round-off
   g_start_ = g_end;
+  if (bounded) {
+    clearance_start_bounded_ = true;
+  } else {
+    anchor_clearance(k_end, g_end);
+  }
 }
 
 bool PlaneContact::Impl::flat_closed_form() {
@@ -363,6 +408,7 @@ bool PlaneContact::Impl::flat_closed_form() {
       const int pieces =
           static_cast<int>(std::min(1e6, std::ceil(span / laws_.options().max_step_s)));
       double lo = t_, g_lo = g_start_.g[i], hi = lo, g_hi = g_lo;
+      if (trigger == Trigger::clearance && clearance_start_bounded_) g_lo = value(t_);
       bool crossed = false;
       for (int p = 1; p <= std::max(1, pieces) && g_lo > 0.0; ++p) {
         hi = p >= pieces ? first.time : t_ + span * p / pieces;

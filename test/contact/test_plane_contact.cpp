@@ -817,6 +817,99 @@ TEST(PlaneContact, LowFrictionRockingSlipsAndSticksAsThePlanarModelSays) {
 // ---------------------------------------------------------------------------------------------
 // Regions, other planes, bad input
 
+TEST(PlaneContact, AnObstacleIsMetWhereASearchOfTheFreeTrajectoryFindsItWithFewClearanceLookUps) {
+  // A wall x = x_w is the obstacle: clearance x_w - x_G - reach(b_x), the exact distance of the
+  // lens to the half-space. The clearance is evaluated only where the motion since its last value
+  // could have used that value up, so the phase with the wall must follow the free phase bit for
+  // bit and end where the free trajectory first reaches the wall (found here by bisection on its
+  // states), while looking the clearance up less than once every two steps where the wall is not
+  // right beside the stone. Three motions: the
+  // slide of 0.5 m/s (mu 0.3, rolling resistance 2 um), which slips 42 mm and then rocks with
+  // the contact stuck; frictionless rocking from 5 deg, where G stays on its vertical; and
+  // rolling on the rim in place at 60 deg, where G stays still and only the turning of the lens
+  // brings it to the wall.
+  const auto model = stone_model();
+  const double rim_rate = std::sqrt(kM * kG * kA / (kI1 * std::sin(60 * kDeg)));
+  const Vector3d rim_axis = tilt_about_y(60 * kDeg) * Vector3d::UnitZ();
+  const double t_end = 1.0, dt = 1e-3;
+  auto front = [](const vg::RigidBodyState& s) {
+    return s.position_world.x() + kLens.reach((s.orientation * Vector3d::UnitZ()).x());
+  };
+  struct Case {
+    vg::RigidBodyState start;
+    vg::ContactMaterial law;
+    // The wall `depth` inside the front's farthest reach after `after_s`: deep enough that the
+    // front stays beyond it longer than the longest step (5 ms), as events are sign changes
+    // between step ends.
+    double after_s, depth;
+    double wall_early, wall_never;
+  };
+  const Case cases[] = {
+      {on_plane(model, Quaterniond::Identity(), Vector2d::Zero(), Vector2d(0.5, 0),
+                Vector3d::Zero()),
+       material(0.3, 2e-6, 0.0), 0.3, 5e-6, 0.03, 0.2},
+      {on_plane(model, tilt_about_y(5 * kDeg), Vector2d::Zero(), Vector2d::Zero(),
+                Vector3d::Zero()),
+       material(0.0, 0.0, 0.0), 0.1, 5e-6, -1.0, 0.2},
+      {on_plane(model, tilt_about_y(60 * kDeg), Vector2d::Zero(), Vector2d::Zero(),
+                rim_rate * (Vector3d::UnitZ() - std::cos(60 * kDeg) * rim_axis)),
+       material(0.9, 0.0, 0.0), 0.01, 5e-4, -1.0, 0.2},
+  };
+  for (const Case& c : cases) {
+    vg::PlaneContact free_phase(model, kLens, kGravity, 0.0, vg::PlaneRegion::whole_plane(), c.law,
+                                c.start, 0.0);
+    const Trace free_trace = trace(free_phase, model, t_end, dt);
+    double farthest = -1.0;
+    for (std::size_t i = 0; i < free_trace.t.size(); ++i) {
+      if (free_trace.t[i] > c.after_s) farthest = std::max(farthest, front(free_trace.s[i]));
+    }
+    for (const double wall : {c.wall_early, farthest - c.depth, c.wall_never}) {
+      if (wall < 0.0) continue;
+      auto gap = [wall, &front](const vg::RigidBodyState& s) { return wall - front(s); };
+      vg::PlaneContact reference(model, kLens, kGravity, 0.0, vg::PlaneRegion::whole_plane(), c.law,
+                                 c.start, 0.0);
+      const auto hits = crossings(reference, model, t_end, dt, gap);
+      long look_ups = 0;
+      vg::PlaneContactOptions options;
+      options.clearance_m = [wall, &look_ups](const vg::LensPose& pose) {
+        ++look_ups;
+        return wall - pose.center_world.x() - kLens.reach(pose.axis_world.x());
+      };
+      vg::PlaneContact phase(model, kLens, kGravity, 0.0, vg::PlaneRegion::whole_plane(), c.law,
+                             c.start, 0.0, options);
+      // Look-ups and steps up to the last grid time before the end (the search at the wall
+      // aside).
+      long look_ups_before = 0, steps_before = 0, look_ups_at_grid = 0, steps_at_grid = 0;
+      const Trace r = trace(phase, model, t_end, dt, 0.0, [&](double, double) {
+        look_ups_before = look_ups_at_grid;
+        steps_before = steps_at_grid;
+        look_ups_at_grid = look_ups;
+        steps_at_grid = phase.counters().steps;
+      });
+      if (hits.empty()) {
+        EXPECT_NE(r.last.event, vg::PlaneContactEvent::obstacle) << wall;
+      } else {
+        ASSERT_EQ(r.last.event, vg::PlaneContactEvent::obstacle) << wall;
+        EXPECT_NEAR(r.last.time_s, hits.front().t, 1e-12) << wall;
+        EXPECT_NEAR(gap(r.last.state), 0.0, 1e-15) << wall;
+      }
+      // Up to the wall, the same trajectory as without it.
+      for (std::size_t i = 0; i + 1 < r.t.size(); ++i) {
+        ASSERT_EQ(r.t[i], free_trace.t[i]);
+        EXPECT_EQ(r.s[i].position_world, free_trace.s[i].position_world) << wall << " " << r.t[i];
+        EXPECT_EQ(r.s[i].angular_momentum_world, free_trace.s[i].angular_momentum_world);
+      }
+      // Once a step without the bound; a wall within micrometres of a rocking stone is looked up
+      // about that often.
+      if (wall == c.wall_early || wall == c.wall_never) {
+        EXPECT_LT(2 * look_ups_before, steps_before) << wall;
+      }
+      report("wall at " + std::to_string(wall) + " m: clearance look-ups per step",
+             static_cast<double>(look_ups_before) / static_cast<double>(steps_before));
+    }
+  }
+}
+
 TEST(PlaneContact, LeavingTheBoardTopAndEnteringTheBoardsFootprintOnTheTable) {
   // Rotation frozen, flat: the contact point is under G, x(t) = x0 + v0 t - mu g t^2 / 2.
   const vg::BoardGeometry board;

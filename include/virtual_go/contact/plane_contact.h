@@ -78,7 +78,9 @@ struct PlaneContactOptions {
   // Optional: the signed distance (m) from the stone at a pose to the obstacles other than the
   // plane (the board's sides for a stone on the table), positive while none touches it. The
   // phase ends with `obstacle` where it reaches 0 (located like every event, on the dense
-  // output). It must be continuous in the pose; empty: there is nothing else to touch.
+  // output). It must be continuous in the pose and change by no more than the farthest any point
+  // of the lens moves (as a distance to fixed obstacles does): while a step cannot have used up
+  // the last value found, it is not evaluated again. Empty: there is nothing else to touch.
   std::function<double(const LensPose&)> clearance_m;
 };
 
