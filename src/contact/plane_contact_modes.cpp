@@ -296,26 +296,20 @@ ModeChoice PlaneContactLaws::choose_mode(const PlaneContactKinematics& k_in, Len
     }
   }
   // Rest: nothing moves and every part can hold it.
-  PlaneContactMode still = c.mode;
-  if (is_static(k, &still)) {
+  const auto rests = [&](const auto& kinematics) {
+    PlaneContactMode still = c.mode;
+    if (!is_static(kinematics, &still)) return false;
     c.result = ModeChoice::Result::rest;
     c.mode = still;
-    c.kinematics = projected(k, still);
-    return c;
-  }
+    c.kinematics = projected(kinematics, still);
+    return true;
+  };
+  if (rests(k)) return c;
   k = projected(k, c.mode);
   // A snapped part is still by its event, though its speed at the event's root may lie above
   // the zero speed: the rest test again on the motion the snap leaves (a thrown stone that had
   // stopped sliding, then stopped rolling, stayed exactly still for ever without a rest).
-  if (snap) {
-    PlaneContactMode snapped = c.mode;
-    if (is_static(k, &snapped)) {
-      c.result = ModeChoice::Result::rest;
-      c.mode = snapped;
-      c.kinematics = projected(k, snapped);
-      return c;
-    }
-  }
+  if (snap && rests(k)) return c;
   if (release && *release != Trigger::spinning_bound) {
     const bool tangential = *release == Trigger::tangential_bound;
     ContactLawPart& p = tangential ? c.mode.tangential : c.mode.rolling;
