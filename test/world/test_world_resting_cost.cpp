@@ -41,8 +41,8 @@ vg::World board_of(bool full) {
 // reach over a call (1/60 s) stays more than 10 cm from every board stone.
 vg::RigidBodyState thrown() {
   const Quaterniond tilt(Eigen::AngleAxisd(0.3, Vector3d(0.6, 0.8, 0.0)));
-  vg::RigidBodyState s = at(Vector3d(kHalfX + 0.14, 0.01, -kThickness + 0.1), tilt,
-                            Vector3d(0.3, 0.1, 0.5));
+  vg::RigidBodyState s =
+      at(Vector3d(kHalfX + 0.14, 0.01, -kThickness + 0.1), tilt, Vector3d(0.3, 0.1, 0.5));
   return with_omega(s, Vector3d(1.0, -2.0, 20.0));
 }
 
