@@ -135,7 +135,9 @@ Bounds World::reach_bounds(std::size_t i, double dt_s) const {
   // The lens lies within its rim sphere about the centre, and the centre moves at most at
   // sqrt(2 K / m) with K the kinetic energy bound (its island's, whose members trade energy).
   // In flight this holds across board contacts too, and the flight's swept box up to its board
-  // contact lies within this box.
+  // contact lies within this box. Argued, not proven: test_world_reach_bound samples 3000 random
+  // stones over a call (flight, bounces, plane contact, rim spin, board edges, islands); the
+  // tightest used 0.97 of the motion allowance (a stone sliding on the board).
   const WorldBodyModel& body = body_at(i);
   const double centre_speed = std::sqrt(2.0 * shared_kinetic_energy_bound(i, dt_s) /
                                         body.setup().model.mass_properties().mass());
