@@ -76,13 +76,20 @@ std::set<std::pair<std::size_t, std::size_t>> brute_force(const std::vector<vg::
   return out;
 }
 
+// n stones in a grid, with what brute force compares against, and the random numbers.
+struct Scene {
+  Scene(std::size_t n, unsigned seed) : rng(seed), bounds(n), present(n, 0), awake(n, 0) {}
+  std::mt19937 rng;
+  std::uniform_real_distribution<double> u{-1.0, 1.0};
+  vg::BroadPhase grid{kSpacingX, kSpacingY};
+  std::vector<vg::Bounds> bounds;
+  std::vector<char> present, awake;
+};
+
 TEST(BroadPhase, CandidatePairsAreExactlyTheBruteForceOnes) {
-  std::mt19937 rng(15);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
   const std::size_t n = 361;
-  vg::BroadPhase grid(kSpacingX, kSpacingY);
-  std::vector<vg::Bounds> bounds(n);
-  std::vector<char> present(n, 0), awake(n, 0);
+  Scene scene(n, 15);
+  auto& [rng, u, grid, bounds, present, awake] = scene;
   auto place = [&](std::size_t i) {
     // Resting stones near grid points (neighbours touch or overlap), awake ones anywhere with a
     // swept box, a few of them across much of the board (the large list).
@@ -132,13 +139,11 @@ TEST(BroadPhase, CandidatePairsAreExactlyTheBruteForceOnes) {
 // changes only its bounds): tiny moves that make and break overlaps inside the same cells, and
 // now and then a wake, a sleep or a jump to other cells, keep the pairs those of brute force.
 TEST(BroadPhase, SmallMovesWithinTheSameCellsKeepThePairsExact) {
-  std::mt19937 rng(28);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
   const std::size_t n = 60;
-  vg::BroadPhase grid(kSpacingX, kSpacingY);
-  std::vector<vg::Bounds> bounds(n);
+  Scene scene(n, 28);
+  auto& [rng, u, grid, bounds, present, awake] = scene;
+  present.assign(n, 1);
   std::vector<Vector3d> centre(n);
-  std::vector<char> present(n, 1), awake(n, 0);
   for (std::size_t i = 0; i < n; ++i) {
     // A 6 x 10 block, neighbours' boxes 0.2 mm apart to 0.2 mm overlapping.
     centre[i] = Vector3d((static_cast<int>(i % 6) - 3) * 2 * kRim + 2e-4 * u(rng),
