@@ -55,7 +55,9 @@ foreach(core_test
     world/test_world_pair_impacts
     world/test_world_cradle
     world/test_world_crowd
-    world/test_stone_placement)
+    world/test_stone_placement
+    world/test_world_resting_cost
+    world/test_world_reach_bound)
   get_filename_component(target ${core_test} NAME)
   catkin_add_gtest(${target} test/${core_test}.cpp)
   target_link_libraries(${target} virtual_go_core GTest::gtest_main)

@@ -14,6 +14,7 @@ catkin_add_gtest(node_adapter_test
   test/sim/test_stone_simulation_place.cpp
   test/sim/test_click_placement.cpp
   test/sim/test_stone_simulation_names.cpp
+  test/sim/test_stone_simulation_pose_room.cpp
   test/sim/test_sim_pacer.cpp
   test/sim/test_stone_states.cpp
   test/sim/test_mesh_file.cpp

@@ -72,6 +72,16 @@ std::vector<double> row_x(const ManyScene& sc, int j) {
   return x;
 }
 
+// The stone of column i, row j (its colour from the checkerboard) lying flat and still at
+// (x, y), its lowest point drop_m above the board (z = 0).
+ManyStone grid_stone(const ManyScene& sc, int i, int j, double x, double y, double drop_m) {
+  const Colour c = colour_at(i, j);
+  const StoneSpec& spec = c == Colour::black ? sc.black : sc.white;
+  const Eigen::Vector3d zero = Eigen::Vector3d::Zero();
+  return make_stone_state(spec, c, Eigen::Vector3d(x, y, spec.half_height_m + drop_m),
+                          Eigen::Quaterniond::Identity(), zero, zero);
+}
+
 }  // namespace
 
 StoneSpec black_stone() { return make_spec(0.0222, "slate"); }
@@ -86,15 +96,9 @@ ManyScene resting_board(int n, double duration_s) {
                    "by row from A1, neighbours along a row touching";
   sc.duration_s = duration_s;
   sc.needs_stone_contact = false;  // they touch, but at rest nothing needs to push
-  const Eigen::Vector3d zero = Eigen::Vector3d::Zero();
   for (int k = 0; k < n; ++k) {
     const int i = k % 19, j = k / 19;
-    const Colour c = colour_at(i, j);
-    const StoneSpec& spec = c == Colour::black ? sc.black : sc.white;
-    const double x = row_x(sc, j)[i];
-    const double y = (j - 9) * kPitchY;
-    sc.stones.push_back(make_stone_state(spec, c, Eigen::Vector3d(x, y, spec.half_height_m),
-                                         Eigen::Quaterniond::Identity(), zero, zero));
+    sc.stones.push_back(grid_stone(sc, i, j, row_x(sc, j)[i], (j - 9) * kPitchY, 0.0));
   }
   return sc;
 }
@@ -136,16 +140,11 @@ ManyScene thrown_into_cluster(double duration_s) {
       "black stone thrown from 20 mm above the board, 120 mm away, at (1.2, 0.05, 0) m/s";
   sc.duration_s = duration_s;
   sc.needs_stone_contact = true;
-  const Eigen::Vector3d zero = Eigen::Vector3d::Zero();
   const Eigen::Quaterniond flat = Eigen::Quaterniond::Identity();
   for (int j = 8; j <= 10; ++j) {
     const std::vector<double> x = row_x(sc, j);
-    for (int i = 8; i <= 10; ++i) {
-      const Colour c = colour_at(i, j);
-      const StoneSpec& spec = c == Colour::black ? sc.black : sc.white;
-      sc.stones.push_back(make_stone_state(
-          spec, c, Eigen::Vector3d(x[i], (j - 9) * kPitchY, spec.half_height_m), flat, zero, zero));
-    }
+    for (int i = 8; i <= 10; ++i)
+      sc.stones.push_back(grid_stone(sc, i, j, x[i], (j - 9) * kPitchY, 0.0));
   }
   // Lands about 75 mm further on, slides and bounces into the block's left column.
   sc.stones.push_back(make_stone_state(
@@ -166,17 +165,12 @@ ManyScene dropped_grid(int n, double duration_s) {
   const double pitch_x = 2.0 * kPitchX, pitch_y = 2.0 * kPitchY;
   sc.board.size_x_m = 19.0 * pitch_x + 0.2;
   sc.board.size_y_m = 19.0 * pitch_y + 0.2;
-  const Eigen::Vector3d zero = Eigen::Vector3d::Zero();
   for (int k = 0; k < n; ++k) {
     const int i = k % 19, j = k / 19;
-    const Colour c = colour_at(i, j);
-    const StoneSpec& spec = c == Colour::black ? sc.black : sc.white;
     // Heights by the golden ratio's multiples: spread evenly, no two stones' events coincide.
     const double frac = std::fmod(0.6180339887498949 * (k + 1), 1.0);
     const double drop_m = 0.002 + 0.018 * frac;
-    sc.stones.push_back(make_stone_state(
-        spec, c, Eigen::Vector3d((i - 9) * pitch_x, (j - 9) * pitch_y, spec.half_height_m + drop_m),
-        Eigen::Quaterniond::Identity(), zero, zero));
+    sc.stones.push_back(grid_stone(sc, i, j, (i - 9) * pitch_x, (j - 9) * pitch_y, drop_m));
   }
   return sc;
 }

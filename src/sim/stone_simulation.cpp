@@ -639,6 +639,14 @@ void StoneSimulation::plan_change(const Change& c) {
     plan.stone.z_m += c.drop_height_m;
     apply_plan(stones, plan);
     names.push_back(c.name);
+  } else if (c.reason == EventReason::place) {
+    // By pose: where the pose puts it, never nudged (it rests only after the step, if at all).
+    // A stone in the air is out of a set-down's way by layout_around's height band; one lying
+    // on the board is in it.
+    stones.push_back(
+        PlanStone{StoneId{}, c.state.position_world.head<2>(), c.state.position_world.z(),
+                  world_->body_model(world_->color_body(c.color)).lens().half_width(), false});
+    names.push_back(c.name);
   } else if (c.reason == EventReason::set_state) {
     teleport(c.name.empty() ? stone_name(0) : c.name, c.state);
   } else if (c.reason == EventReason::reset) {
@@ -652,7 +660,6 @@ void StoneSimulation::plan_change(const Change& c) {
       if (names[i] == (c.name.empty() ? stone_name(0) : c.name)) stones[i].movable = false;
     }
   }
-  // Stones placed by pose start in the air: not in a set-down's way at that step.
 }
 
 SetDownPlan StoneSimulation::check_room(std::size_t body, GoPoint point) {

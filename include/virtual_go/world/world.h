@@ -206,6 +206,11 @@ class World {
   const LensGeometry& lens() const { return bodies_[0].lens(); }
   const BoardDistance& board_distance() const { return bodies_[0].board(); }
   const WorldCounters& counters() const { return counters_; }
+  // The box (world, m) the pair search trusts a stone to stay within over the next dt_s (>= 0;
+  // stage 1a): its rim sphere about every place its centre can reach while its energy (its
+  // island's) does not rise, widened by the jump of a stone the fallback or an island moves.
+  // Throws InvalidArgument ("stone" unknown, "dt" negative or not finite). For tests.
+  Bounds reach_bounds_of(StoneId id, double dt_s) const;
 
  private:
   void check_state(const std::string& field, const WorldBodyModel& body,
@@ -283,18 +288,19 @@ class World {
   // Each member but `except` goes on in its own single-stone fallback.
   void dissolve_island(std::size_t key, std::size_t except);
   IslandRun* island_of(std::size_t i);
+  const IslandRun* island_of(std::size_t i) const;
   StoneMotion stone_motion(std::size_t i) const;
   // A bound (m/s) on the speed of every point of the stone over the next dt_s while its energy
   // (its island's) does not rise: kinetic energy at most the energy above the lowest potential
   // (the lens lying flat on the table, or on the top face when it cannot leave it in dt_s).
-  double point_speed_bound(std::size_t i, double dt_s);
+  double point_speed_bound(std::size_t i, double dt_s) const;
   // The kinetic energy bound of that rule for stone i alone (J).
-  double kinetic_energy_bound(std::size_t i, double dt_s);
+  double kinetic_energy_bound(std::size_t i, double dt_s) const;
   // That bound for stone i, or the sum over its island's members when it is in one (J).
-  double shared_kinetic_energy_bound(std::size_t i, double dt_s);
+  double shared_kinetic_energy_bound(std::size_t i, double dt_s) const;
   // Bounds (world, m) that awake stone i cannot leave over the next dt_s while its energy (its
   // island's) does not rise: its rim sphere about every place its centre can reach.
-  Bounds reach_bounds(std::size_t i, double dt_s);
+  Bounds reach_bounds(std::size_t i, double dt_s) const;
   // Bounds of stone i's motion over the pass for the second-order gap bound
   // (contact/pair_gap_bound.h): resting, flying, or in plane contact on the top face with a
   // cap (then its force bound); nothing for an island member or the fallback.
@@ -307,7 +313,7 @@ class World {
   // How far a point of stone i may jump within a pass beyond its speed bound times the pass's
   // length (m): 0 but for a stone an island or the fallback moves (its samples between lattice
   // points are partial sub-steps with position corrections, or the next lattice state itself).
-  double jump_bound(std::size_t i);
+  double jump_bound(std::size_t i) const;
   // The broad phase holds every resting stone (its rim sphere, entered when it comes to rest)
   // and every awake stone (its bounds for the pass, entered by the pair search).
   void enter_fallen_asleep();
