@@ -414,7 +414,7 @@ TEST(WorldCradle, OnTheBoardAnElasticFrictionlessRowIsTheAnalyticCradle) {
 // pi sqrt((I1 + m c^2) / (m g d)) (0.0650 s; sample peaks 0.0656 s apart). The same stone alone
 // on the board from the same state: rests at 11.05 s after it (5e-5 m, the demo's: 1.08 s; 0:
 // never, energy constant to 2e-17 J). Without the pair impacts the row moved on as one plastic
-// block and all rested at 0.19 s, with no stone left to rock.
+// block and all rested within 0.2 s, with no stone left to rock.
 struct RealBoardRun {
   double worst_rise = 0.0, worst_gap = 1.0, worst_board = 1.0, rest_at = -1.0;
   // The last stone moving: its first tilt peak once every other stone rests (time, angle).
@@ -495,7 +495,7 @@ TEST(WorldCradle, OnARealBoardTheRowComesToRest) {
 
 // The run above never overlaps by more than the 1e-9 m. Measured: smallest pair gap
 // 0 m, all rest at 11.06 s (5 islands, 2143 island sub-steps, 11148 passes; with the islands'
-// impulses plastic, before pair_impacts was the default: -1.3e-19 m, 0.143 s). Before: an
+// impulses plastic, before pair_impacts was the default: -1.3e-19 m, within 0.2 s). Before: an
 // overlap of 5.2e-8 m (an island member jumped into the striker within a pass of 6e-9 s) and
 // 637 islands, 816,917 passes: stones 1-10 nm from an island, neither joined nor let go.
 TEST(WorldCradle, OnARealBoardNoTwoStonesOverlap) { EXPECT_GE(real_board_run().worst_gap, -1e-9); }
