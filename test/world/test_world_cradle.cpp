@@ -509,7 +509,7 @@ TEST(WorldCradle, OnARealBoardTheRowComesToRest) {
 // 637 islands, 816,917 passes: stones 1-10 nm from an island, neither joined nor let go.
 TEST(WorldCradle, OnARealBoardNoTwoStonesOverlap) { EXPECT_GE(real_board_run().worst_gap, -1e-9); }
 
-// The default on a real board (friction 0.3 on the board and between the stones, e* 0.8), a
+// The default on a real board (friction 0.3 on the board, frictionless stones, e* 0.8), a
 // row of 3 struck by a sliding striker, against the analytic cradle: not a cradle, and why. The
 // board's friction mu m g, acting c below the centre, less the rolling resistance's couple
 // l_r m g, pitches the sliding striker forward at alpha = m g (mu c - l_r) / I1 (its contact
