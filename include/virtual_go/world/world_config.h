@@ -53,6 +53,8 @@ struct WorldConfig {
   // before issue 15; test_world keeps a variant). It was off until the pair search stopped
   // taking many tiny passes for stones side by side in plane contact and a stone dropped into
   // its slot between exactly touching neighbours finished; its work is in the WorkBudget.
+  // Still dear: a stone thrown into a full board makes one island of every touching stone
+  // (0.1-0.2 s of CPU per simulated ms; docs/physics.md).
   bool stone_contact = kDefaultStoneContact;
   double zeno_height_m = 1e-6;  // rebounds lower than this end the bouncing (docs/physics.md,
                                 // "Impact")
