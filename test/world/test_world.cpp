@@ -3,8 +3,9 @@
 // gain and no overlap in any sampled state, Jellett's integral through flight, cap impacts and
 // sliding, a tilted spinning toss that comes to exact rest within the rolling resistance's tilt,
 // flight samples against the closed form written in the test, a resting stone that costs nothing
-// (counters) and stays bitwise still, a command that wakes it, determinism, and events that do
-// not depend on the sampling grid.
+// (counters) and stays bitwise still, a full resting board that costs nothing, tengen dropped into
+// it with stone contact on (energy, overlap, exact rest) and off (only it visited), a command that
+// wakes a stone, determinism, and events that do not depend on the sampling grid.
 #include <gtest/gtest.h>
 
 #include <boost/math/quadrature/gauss_kronrod.hpp>
