@@ -10,7 +10,8 @@ set -euo pipefail
 usage() {
   cat <<'EOF'
 usage: scripts/replay_benchmark.sh [--game FILE.sgf] [--interval S] [--window SECONDS]
-                                   [--baseline STONE_NODE] [--out FILE]
+                                   [--baseline STONE_NODE] [--stone-contact true|false]
+                                   [--replay-only] [--out FILE]
 
 (a) Replay: starts build_catkin/devel/lib/virtual_go/stone_node (or $VG_BUILD/...) with the
     board, ~publish_clock true, ~real_time_factor 0 (as fast as it can) and ~rate 60 (states at
@@ -28,6 +29,8 @@ usage: scripts/replay_benchmark.sh [--game FILE.sgf] [--interval S] [--window SE
                    point, all at rest (the issue's goal: <= 1.5 x "1 resting").
     With --baseline another stone_node binary (e.g. the main checkout's) is measured the same
     way, interleaved (A, B, A, B), so the load of the machine hits both alike.
+--stone-contact sets the node's ~contact/stone/enabled (default: the node's default, true) in
+both parts; --replay-only skips (b).
 Writes a Markdown report (default docs/benchmarks/replay.md).
 EOF
 }
@@ -38,6 +41,8 @@ game="$VG_BUILD/test_data/kigo/usr/share/kigo/games/Honinbo-51-5.sgf"
 interval=0
 window=10
 baseline=""
+stone_contact=""
+replay_only=0
 out="$VG_ROOT/docs/benchmarks/replay.md"
 while [ $# -gt 0 ]; do
   case "$1" in
@@ -46,6 +51,13 @@ while [ $# -gt 0 ]; do
     --interval) interval="$2"; shift ;;
     --window) window="$2"; shift ;;
     --baseline) baseline="$2"; shift ;;
+    --stone-contact)
+      case "$2" in
+        true | false) stone_contact="$2" ;;
+        *) echo "replay_benchmark.sh: --stone-contact takes true or false, got '$2'" >&2; exit 2 ;;
+      esac
+      shift ;;
+    --replay-only) replay_only=1 ;;
     --out) out="$2"; shift ;;
     *) echo "replay_benchmark.sh: unknown option $1 (see --help)" >&2; exit 2 ;;
   esac
@@ -100,6 +112,8 @@ auto_reset_after_rest: 0.0
 publish_clock: false
 real_time_factor: 1.0
 '
+[ -n "$stone_contact" ] && flat_at_tengen+="contact: {stone: {enabled: $stone_contact}}
+"
 
 # ---- (a) the replay against the clock the node publishes.
 replay_row() {  # $1: drop height
@@ -191,6 +205,7 @@ builds=("this" "$node_bin")
 [ -n "$baseline" ] && builds+=("baseline" "$baseline")
 cpu_rows=()
 for round in 1 2; do
+  [ "$replay_only" = 1 ] && break
   for scene in "flight" "1 resting" "361 resting"; do
     for ((k = 0; k < ${#builds[@]}; k += 2)); do
       echo "replay_benchmark.sh: CPU, ${builds[k]}, $scene, round $round ($window s)" >&2
@@ -204,7 +219,8 @@ done
   echo
   echo "Measured by \`scripts/replay_benchmark.sh\` on $(date -u '+%Y-%m-%d %H:%M UTC'),"
   echo "$(grep -m1 'model name' /proc/cpuinfo | sed 's/.*: //'), $(nproc) cores shared with other"
-  echo "jobs (load average $(cut -d' ' -f1-3 /proc/loadavg) at the end)."
+  echo "jobs (load average $(cut -d' ' -f1-3 /proc/loadavg) at the end). Stone-stone contact"
+  echo "(\`~contact/stone/enabled\`): ${stone_contact:-default (true)}."
   echo
   echo "## Replay with ~real_time_factor 0 at 60 Hz"
   echo
@@ -215,15 +231,17 @@ done
   echo "| drop height (m) | moves | wall (s) | simulated (s) | simulated / wall |"
   echo "|---|---|---|---|---|"
   printf '%s\n' "${replay_rows[@]}"
-  echo
-  echo "## Node CPU at 60 Hz"
-  echo
-  echo "CPU = node process (utime + stime) / wall time over $window s, % of one core; a rospy"
-  echo "subscriber on /tf; two rounds. \"this\": $node_bin."
-  [ -n "$baseline" ] && echo "\"baseline\": $baseline."
-  echo
-  echo "| build | scene | CPU (%) | /tf msgs |"
-  echo "|---|---|---|---|"
-  printf '%s\n' "${cpu_rows[@]}"
+  if [ "$replay_only" = 0 ]; then
+    echo
+    echo "## Node CPU at 60 Hz"
+    echo
+    echo "CPU = node process (utime + stime) / wall time over $window s, % of one core; a rospy"
+    echo "subscriber on /tf; two rounds. \"this\": $node_bin."
+    [ -n "$baseline" ] && echo "\"baseline\": $baseline."
+    echo
+    echo "| build | scene | CPU (%) | /tf msgs |"
+    echo "|---|---|---|---|"
+    printf '%s\n' "${cpu_rows[@]}"
+  fi
 } >"$out"
 echo "replay_benchmark.sh: wrote $out" >&2

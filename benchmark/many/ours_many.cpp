@@ -1,6 +1,6 @@
 // Ours with many stones: one virtual_go::World holding every stone, sampled on the grid as the
 // node samples it (advance_to(k dt), then the states). Stone-stone contact is switched on
-// (WorldConfig::stone_contact, off by default in the core until its cost is bounded), and each
+// explicitly (WorldConfig::stone_contact, the core's default too), and each
 // stone gets its colour's body exactly as the scene gives it to the peers: the config's body is
 // the scene's black stone, a second body the scene's white stone. One contact law for every
 // pair, as for the peers (board, table, stone-stone).

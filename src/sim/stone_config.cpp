@@ -157,6 +157,7 @@ WorldConfig checked_world(const StoneConfig& c, const Stone& stone, const Motion
   check_material("table", c.table_material);
   world.board_material = c.board_material;
   world.table_material = c.table_material;
+  world.stone_contact = c.stone_contact;
   if (!(c.zeno_height_m > 0.0 && c.zeno_height_m <= kMaxNodeZenoHeightM)) {
     fail("contact/zeno_height", "must be positive and at most " +
                                     format_value(kMaxNodeZenoHeightM) + " m, got " +

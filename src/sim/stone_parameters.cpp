@@ -165,6 +165,10 @@ std::vector<BoundParameter> bind_parameters(StoneConfig& c) {
       {{"contact/table/spinning_friction", "m", "",
         "stone on table: as ~contact/board/spinning_friction"},
        &c.table_material.spinning_friction_m},
+      {{"contact/stone/enabled", "", "",
+        "true: stones touch, knock and rest against each other; false: they pass through "
+        "each other"},
+       &c.stone_contact},
       {{"contact/zeno_height", "m", "",
         "rebound height below which bouncing ends in sustained contact; positive and at most " +
             format_value(kMaxNodeZenoHeightM)},

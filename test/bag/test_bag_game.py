@@ -5,10 +5,10 @@ Honinbo-51-5.sgf onto the board (--drop-height 0.02: each stone flies, lands, bo
 bag_report --strict on the bag must exit 0. A copy with one resting stone's position moved by
 1 um in one ~stones message (written with rosbag's Python API) must fail, naming that stone.
 
-15 moves: move 16 (white L17) is the game's first stone beside another on a row. Points are
-22.0 mm apart across and the stones 22.2 mm (black) and 21.9 mm (white) wide; a dropped stone
-lands on its point and stone-stone contact is off in the node, so from then on neighbours on a
-row overlap (1.4e-4 m black-black, 3.6e-5 m black-white: bag_report's overlap check fails)."""
+Points are 22.0 mm apart across and the stones 22.2 mm (black) and 21.9 mm (white) wide; each
+dropped stone is aimed at the free spot beside its neighbours (world/stone_placement.h), so no two
+overlap and, with stone-stone contact on (the node's default), none is knocked: no island forms in
+these moves."""
 import os
 import subprocess
 import sys

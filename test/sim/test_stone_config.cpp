@@ -34,6 +34,21 @@ void expect_refused(const std::string& param, const std::function<void(vg::Stone
 
 TEST(StoneConfig, DefaultsAreValid) { EXPECT_NO_THROW(vg::validate_config(vg::StoneConfig())); }
 
+// ~contact/stone/enabled reaches the world: stone contact is on by default (issue 15: stones
+// touch, knock and rest against each other) and the parameter switches it off.
+TEST(StoneConfig, StoneContactIsOnByDefaultAndTheParameterSetsIt) {
+  vg::StoneConfig c;
+  c.board_enabled = true;
+  const vg::ParameterInfo* p = vg::find_parameter("contact/stone/enabled");
+  ASSERT_NE(p, nullptr);
+  EXPECT_EQ(p->default_text, "true");
+  const vg::CheckedConfig on = vg::check_config(c);
+  ASSERT_TRUE(on.world.has_value());
+  EXPECT_TRUE(on.world->stone_contact);
+  c.stone_contact = false;
+  EXPECT_FALSE(vg::check_config(c).world->stone_contact);
+}
+
 TEST(StoneConfig, RateBoundsAreInclusive) {
   for (double rate : {vg::kMinRateHz, vg::kMaxRateHz}) {
     vg::StoneConfig config;

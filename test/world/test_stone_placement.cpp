@@ -213,18 +213,23 @@ TEST(StonePlacement, ADroppedStoneBouncesVerticallyAndRestsAtItsPoint) {
 
 // Dropped between two blacks set down on C4 and E4 (22.2 mm stones on a 22 mm grid): aimed at
 // the free spot, it falls and bounces straight down 2.97321 mm off the line (the closed form
-// sqrt(22.2^2 - 22^2) mm) and rests there touching neither neighbour. The world's stone contact is
-// off here, so only the aim keeps the lenses apart; over D4 itself it would overlap both by
-// 0.1 mm along the row.
+// sqrt(22.2^2 - 22^2) mm) and rests there touching neither neighbour: over D4 itself it would
+// land on both rims (0.1 mm of overlap along the row). With stone contact on (the default) the
+// aim means no stone-stone contact ever happens, so the motion is the single stone's vertical
+// bounce and the neighbours never move.
 TEST(StonePlacement, ADroppedStoneAimsAtTheFreeSpotBesideItsNeighbours) {
   vg::World world = empty_world();
-  ASSERT_FALSE(world.config().stone_contact);
+  ASSERT_TRUE(world.config().stone_contact);
   std::vector<vg::WorldEvent> events;
-  (void)vg::set_down_stone(world, StoneColor::black, vg::parse_gtp_point("C4"), 0.0, events);
-  (void)vg::set_down_stone(world, StoneColor::black, vg::parse_gtp_point("E4"), 0.0, events);
+  const vg::PlacementResult c4 =
+      vg::set_down_stone(world, StoneColor::black, vg::parse_gtp_point("C4"), 0.0, events);
+  const vg::PlacementResult e4 =
+      vg::set_down_stone(world, StoneColor::black, vg::parse_gtp_point("E4"), 0.0, events);
+  const vg::RigidBodyState c4_state = world.state(c4.id), e4_state = world.state(e4.id);
   const GoPoint d4 = vg::parse_gtp_point("D4");
   const Vector3d p = vg::go_point_world(world.config().board, d4);
   const vg::PlacementResult r = vg::drop_stone(world, StoneColor::black, d4, 0.01, 0.0, events);
+  EXPECT_TRUE(r.moved.empty());
   const double between = std::sqrt(std::pow(2 * kBlackA, 2) - 0.022 * 0.022);
   EXPECT_NEAR(r.state.position_world.x(), p.x(), 1e-12);
   EXPECT_NEAR(std::abs(r.state.position_world.y() - p.y()), between, 1e-9);
@@ -238,6 +243,8 @@ TEST(StonePlacement, ADroppedStoneAimsAtTheFreeSpotBesideItsNeighbours) {
   const vg::RigidBodyState& s = world.state(r.id);
   EXPECT_NEAR(s.position_world.x(), r.state.position_world.x(), 1e-12);
   EXPECT_NEAR(s.position_world.y(), r.state.position_world.y(), 1e-12);
+  EXPECT_TRUE(world.state(c4.id) == c4_state);  // bitwise: never pushed (searched, 1e-12 m apart)
+  EXPECT_TRUE(world.state(e4.id) == e4_state);
   std::printf("[ dropped between C4 and E4 ] %.6g mm off D4, smallest gap %.3g m\n",
               1e3 * (s.position_world - p).head<2>().norm(), gap);
 }

@@ -3,18 +3,21 @@
 // gain and no overlap in any sampled state, Jellett's integral through flight, cap impacts and
 // sliding, a tilted spinning toss that comes to exact rest within the rolling resistance's tilt,
 // flight samples against the closed form written in the test, a resting stone that costs nothing
-// (counters) and stays bitwise still, a command that wakes it, determinism, and events that do
-// not depend on the sampling grid.
+// (counters) and stays bitwise still, a full resting board that costs nothing, tengen dropped into
+// it with stone contact on (energy, overlap, exact rest) and off (only it visited), a command that
+// wakes a stone, determinism, and events that do not depend on the sampling grid.
 #include <gtest/gtest.h>
 
 #include <boost/math/quadrature/gauss_kronrod.hpp>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <vector>
 
 #include "support/flight_reference.h"
 #include "virtual_go/common/validation.h"
 #include "virtual_go/go/go_point.h"
+#include "world/many_stones_support.h"
 #include "world_test_support.h"
 
 namespace {
@@ -355,18 +358,30 @@ void expect_same_work(const vg::WorldCounters& a, const vg::WorldCounters& b) {
   EXPECT_EQ(a.islands_formed, b.islands_formed);
 }
 
-// Issue 15: a resting full board costs what an empty one does. 361 stones set down flat on every
-// point (pole on the top face: z_G = c, at rest at once), then 10^6 calls: no stone is even
-// looked at (stones_visited stays put), states bitwise frozen. Waking one stone makes exactly that
-// one visited until it rests again.
-TEST(WorldRest, AFullRestingBoardIsNeverVisited) {
-  const vg::WorldConfig c = config(0.5);
-  std::vector<vg::RigidBodyState> stones;
-  for (int index = 0; index < vg::kGoLines * vg::kGoLines; ++index) {
-    const Vector3d p = vg::go_point_world(c.board, vg::point_at_index(index));
-    stones.push_back(at(Vector3d(p.x(), p.y(), p.z() + kC)));
+// 361 stones set down flat on every point (pole on the top face: z_G = c, at rest at once): 22 mm
+// lenses on the 22 mm x 23.7 mm grid, so each row is a line of stones whose rims touch.
+struct FullBoard {
+  vg::WorldConfig config;
+  std::vector<vg::RigidBodyState> set_down;
+  std::size_t tengen = vg::point_index(vg::parse_gtp_point("K10"));
+
+  explicit FullBoard(bool stone_contact) : config(worldtest::config(0.5)) {
+    config.stone_contact = stone_contact;
+    for (int index = 0; index < vg::kGoLines * vg::kGoLines; ++index) {
+      const Vector3d p = vg::go_point_world(config.board, vg::point_at_index(index));
+      set_down.push_back(at(Vector3d(p.x(), p.y(), p.z() + kC)));
+    }
   }
-  vg::World world(c, stones, 0.0);
+};
+
+// Issue 15: a resting full board costs what an empty one does (stone contact on, the default).
+// After the first call 10^6 calls visit no stone (stones_visited stays put) and do no work, pair
+// work included; states bitwise frozen. A reset wakes them all again.
+TEST(WorldRest, AFullRestingBoardIsNeverVisited) {
+  const FullBoard b(true);
+  ASSERT_TRUE(vg::WorldConfig(b.config.motion, b.config.shape).stone_contact);  // the default
+  const std::vector<vg::RigidBodyState>& stones = b.set_down;
+  vg::World world(b.config, stones, 0.0);
   std::vector<vg::WorldEvent> events;
   world.advance_to(1e-3, events);
   ASSERT_TRUE(world.all_resting());
@@ -391,8 +406,152 @@ TEST(WorldRest, AFullRestingBoardIsNeverVisited) {
     EXPECT_TRUE(world.is_resting(i));
   }
 
-  // Lift K10 (tengen) by 1 cm: only it is visited while it falls, bounces and settles.
-  const std::size_t tengen = vg::point_index(vg::parse_gtp_point("K10"));
+  // A reset wakes them all again.
+  world.reset(stones, 0.0);
+  EXPECT_FALSE(world.all_resting());
+  world.advance_to(1e-3, events);
+  EXPECT_EQ(world.counters().stones_visited, static_cast<long>(stones.size()));
+  EXPECT_TRUE(world.all_resting());
+}
+
+// Stone contact on (the default): tengen lifted 1 cm above the full board falls into its slot,
+// whose width is exactly its own, and lands on its row neighbours' rims as it meets the board (a
+// three-body impact); the knocked neighbours move and everything settles. Checked at every call
+// (1 ms grid) against physics written here: the total energy never rises (from the inertia
+// tensor, over the stones that moved; the others' is constant); no two lenses overlap by more
+// than 1e-9 m (a proven lower bound, for every pair with a stone that moved; the pairs of
+// unmoved stones are those of the set-down board, checked once) and no lens dips into the board;
+// a stone no event names stays bitwise where it was set down; everything comes to exact rest
+// (velocities exactly zero), and the board at rest then costs nothing (counters unchanged over
+// 10^5 calls, states bitwise frozen).
+TEST(WorldRest, TengenDroppedIntoAFullBoardKnocksItsNeighboursAndAllRest) {
+  const FullBoard b(true);
+  vg::World world(b.config, b.set_down, 0.0);
+  std::vector<vg::WorldEvent> events;
+  world.advance_to(1e-3, events);
+  ASSERT_TRUE(world.all_resting());
+  const std::size_t n = b.set_down.size();
+  std::vector<vg::RigidBodyState> frozen;
+  for (std::size_t i = 0; i < n; ++i) frozen.push_back(world.state(i));
+  // The set-down board: rims touch along the rows, nothing overlaps.
+  double set_down_gap = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t j = i + 1; j < n; ++j) {
+      if ((frozen[i].position_world - frozen[j].position_world).norm() > 2 * kA + 1e-6) continue;
+      set_down_gap =
+          std::min(set_down_gap, pair_gap_bound(lens_ref(frozen[i]), lens_ref(frozen[j])));
+    }
+  }
+  EXPECT_GE(set_down_gap, -1e-9);
+
+  const std::size_t tengen = b.tengen;
+  vg::RigidBodyState lifted = world.state(tengen);
+  lifted.position_world.z() += 0.01;
+  double t = world.time();
+  const std::size_t first_event = events.size();
+  world.set_state(tengen, lifted, t, events);
+  ASSERT_FALSE(world.all_resting());
+  const double e_in = mass() * kG * 0.01;  // the energy the lift brought in
+  // Energies relative to the set-down board: only stones that moved contribute.
+  const auto energy_above_set_down = [&] {
+    double e = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!(world.state(i) == frozen[i])) e += energy(world.state(i)) - energy(frozen[i]);
+    }
+    return e;
+  };
+  double lowest = energy_above_set_down(), worst_rise = 0.0;
+  double worst_gap = std::numeric_limits<double>::infinity(), worst_board = worst_gap;
+  double largest_shift = 0.0, largest_turn = 0.0;
+  const vg::WorldCounters start = world.counters();
+  long calls = 0, most_passes = 0;
+  std::vector<vg::RigidBodyState> previous = frozen;
+  std::vector<bool> changed(n, false);
+  while (!world.all_resting() && calls < 10000) {
+    const long passes_before = world.counters().stages;
+    world.advance_to(t += 1e-3, events);
+    ++calls;
+    most_passes = std::max(most_passes, world.counters().stages - passes_before);
+    const double e = energy_above_set_down();
+    worst_rise = std::max(worst_rise, (e - lowest) / e_in);
+    lowest = std::min(lowest, e);
+    // Pairs and board gaps where a stone changed in this call (the others are as last checked).
+    for (std::size_t i = 0; i < n; ++i) changed[i] = !(world.state(i) == previous[i]);
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!changed[i]) continue;
+      const vg::RigidBodyState& s = world.state(i);
+      worst_board = std::min(worst_board, plane_gap(s, 0.0));
+      if (i != tengen) {
+        largest_shift =
+            std::max(largest_shift, (s.position_world - frozen[i].position_world).norm());
+        largest_turn = std::max(largest_turn, s.orientation.angularDistance(frozen[i].orientation));
+      }
+      for (std::size_t j = 0; j < n; ++j) {
+        if (j == i || (j < i && changed[j])) continue;  // each pair once
+        if ((world.state(j).position_world - s.position_world).norm() > 2 * kA + 1e-6) continue;
+        worst_gap = std::min(worst_gap, pair_gap_bound(lens_ref(s), lens_ref(world.state(j))));
+      }
+      previous[i] = s;
+    }
+  }
+  ASSERT_TRUE(world.all_resting()) << "not at rest after " << calls << " ms";
+  const vg::WorldCounters settled = world.counters();
+  EXPECT_LE(worst_rise, 1e-11);
+  EXPECT_GE(worst_gap, -1e-9);
+  EXPECT_GE(worst_board, -1e-9);
+  // Its neighbours were knocked: more than tengen moved (with contact off only tengen would).
+  EXPECT_GT(settled.stones_visited - start.stones_visited, calls);
+  EXPECT_GT(largest_shift, 0.0);
+  // Exact rest: velocities exactly zero everywhere; stones no event named never moved.
+  std::vector<bool> named(n, false);
+  for (std::size_t e = first_event; e < events.size(); ++e) {
+    named[world.index_of(events[e].id)] = true;
+    if (events[e].other) named[world.index_of(*events[e].other)] = true;
+  }
+  int moved = 0;
+  std::vector<vg::RigidBodyState> rested;
+  for (std::size_t i = 0; i < n; ++i) {
+    rested.push_back(world.state(i));
+    EXPECT_EQ(rested[i].velocity_world, Vector3d::Zero()) << "stone " << i;
+    EXPECT_EQ(rested[i].angular_momentum_world, Vector3d::Zero()) << "stone " << i;
+    if (!named[i]) EXPECT_TRUE(rested[i] == frozen[i]) << "stone " << i;
+    moved += !(rested[i] == frozen[i]);
+  }
+  // The board at rest costs nothing again.
+  const std::size_t events_settled = events.size();
+  for (long k = 1; k <= 100000; ++k) world.advance_to(t + k * 1e-3, events);
+  expect_same_work(world.counters(), settled);
+  EXPECT_EQ(events.size(), events_settled);
+  for (std::size_t i = 0; i < n; ++i) EXPECT_TRUE(world.state(i) == rested[i]) << "stone " << i;
+  std::printf(
+      "[ measured ] tengen dropped 1 cm into the full board: all rest after %ld calls (1 ms); "
+      "%d stones moved, neighbours by up to %.3g mm and %.3g rad; %ld stone visits, %ld pair "
+      "impacts, %ld islands, %ld island sub-steps, %ld passes (at most %ld in one call); largest "
+      "energy rise %.3g of the energy brought in, energy lost %.4f of it; smallest gaps %.3g m "
+      "(pairs), %.3g m (board); tengen at rest %.3g mm above the top face (centre minus c), "
+      "tilted %.3g rad\n",
+      calls, moved, largest_shift * 1e3, largest_turn,
+      settled.stones_visited - start.stones_visited, settled.pair_impacts - start.pair_impacts,
+      settled.islands_formed - start.islands_formed,
+      settled.nonsmooth_steps - start.nonsmooth_steps, settled.stages - start.stages, most_passes,
+      worst_rise, (e_in - lowest) / e_in, worst_gap, worst_board,
+      (rested[tengen].position_world.z() - kC) * 1e3,
+      rested[tengen].orientation.angularDistance(Quaterniond::Identity()));
+}
+
+// Stone contact off (the world before issue 15, WorldConfig::stone_contact false): stones pass
+// through each other and each moves alone, so lifting tengen above the full board visits it
+// and nothing else while it falls, bounces and settles; the other 360 stay bitwise frozen and
+// the board at rest costs nothing again.
+TEST(WorldRest, WithoutStoneContactALiftedStoneIsTheOnlyOneVisited) {
+  const FullBoard b(false);
+  vg::World world(b.config, b.set_down, 0.0);
+  std::vector<vg::WorldEvent> events;
+  world.advance_to(1e-3, events);
+  ASSERT_TRUE(world.all_resting());
+  std::vector<vg::RigidBodyState> frozen;
+  for (std::size_t i = 0; i < b.set_down.size(); ++i) frozen.push_back(world.state(i));
+  const std::size_t tengen = b.tengen;
   vg::RigidBodyState lifted = world.state(tengen);
   lifted.position_world.z() += 0.01;
   double t = world.time();
@@ -407,22 +566,16 @@ TEST(WorldRest, AFullRestingBoardIsNeverVisited) {
   }
   ASSERT_TRUE(world.all_resting());
   EXPECT_EQ(world.counters().stones_visited - visited_before, calls);
+  EXPECT_EQ(world.counters().pair_searches, 0);
   const vg::WorldCounters settled = world.counters();
   for (int k = 0; k < 1000; ++k) world.advance_to(t += 1e-3, events);
   expect_same_work(world.counters(), settled);
-  for (std::size_t i = 0; i < stones.size(); ++i) {
+  for (std::size_t i = 0; i < b.set_down.size(); ++i) {
     if (i != tengen) EXPECT_TRUE(world.state(i) == frozen[i]) << "stone " << i;
   }
-
-  // A reset wakes them all again.
-  world.reset(stones, 0.0);
-  EXPECT_FALSE(world.all_resting());
-  world.advance_to(1e-3, events);
-  EXPECT_EQ(world.counters().stones_visited, static_cast<long>(stones.size()));
-  EXPECT_TRUE(world.all_resting());
 }
 
-// The same with stone-stone contact on: a resting board is not even handed to the broad phase
+// With stone-stone contact on, a resting board is not even handed to the broad phase
 // (10^6 calls, every work counter unchanged, pair work included). Then one stone is lifted and
 // falls: its passes look only at its neighbours in the board's grid, so they cost exactly what
 // they cost with only its eight neighbours on the board (the same broad-phase tests, candidate

@@ -112,8 +112,9 @@ struct StoneConfig {
   Eigen::Vector3d board_size_m = Eigen::Vector3d(0.4242, 0.4545, 0.1515);  // x, y, thickness
   ContactMaterial board_material;  // unmeasured placeholders (contact/material.h)
   ContactMaterial table_material;
-  double zeno_height_m = 1e-6;           // rebounds lower than this end the bouncing
-  double auto_reset_after_rest_s = 0.0;  // reset once resting this long; 0 = never
+  bool stone_contact = kDefaultStoneContact;  // stones touch each other (WorldConfig)
+  double zeno_height_m = 1e-6;                // rebounds lower than this end the bouncing
+  double auto_reset_after_rest_s = 0.0;       // reset once resting this long; 0 = never
   std::string world_frame = "world";
   std::string stone_frame = "stone";
   // The simulation owns the time (publishes /clock) instead of following ROS time, and runs at
