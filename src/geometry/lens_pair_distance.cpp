@@ -234,24 +234,20 @@ LensPairContact lens_pair_distance(const LensGeometry& lens_a, const LensPose& p
       starts[count + k] = Start{problem.gap(sphere[k]), sphere[k]};
     }
     const int total = count + kSphereStarts;
-    // In the order of falling F, each start that lies at least kDistinctRad from every one
-    // chosen before is chosen: the next one chosen is the best start distinct from all chosen
-    // so far (a start once too close stays too close), found by a scan, the first on ties.
+    // In the order of falling F, each start at least kDistinctRad from every one chosen before
+    // is chosen. Touching flat stones give many starts of equal F; std::sort's order among them
+    // decides which is polished first, so the sort stays (on the same sequence as before).
+    std::sort(starts.begin(), starts.begin() + total,
+              [](const Start& p, const Start& q) { return p.value > q.value; });
     std::array<Eigen::Vector3d, kPolishedStarts> chosen;
     int chosen_count = 0;
     const double distinct_cos = std::cos(kDistinctRad);
-    while (chosen_count < kPolishedStarts) {
-      int next = -1;
-      for (int k = 0; k < total; ++k) {
-        if (next >= 0 && !(starts[k].value > starts[next].value)) continue;
-        bool distinct = true;
-        for (int c = 0; c < chosen_count; ++c) {
-          distinct = distinct && chosen[c].dot(starts[k].n) < distinct_cos;
-        }
-        if (distinct) next = k;
+    for (int k = 0; k < total && chosen_count < kPolishedStarts; ++k) {
+      bool distinct = true;
+      for (int c = 0; c < chosen_count; ++c) {
+        distinct = distinct && chosen[c].dot(starts[k].n) < distinct_cos;
       }
-      if (next < 0) break;
-      chosen[chosen_count++] = starts[next].n;
+      if (distinct) chosen[chosen_count++] = starts[k].n;
     }
     best_value = -kInfinity;
     for (int c = 0; c < chosen_count; ++c) {
