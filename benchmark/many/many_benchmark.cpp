@@ -33,6 +33,7 @@ struct Options {
   std::string methods = "ours,bullet,ode,mujoco";  // which to run, comma-separated
   std::vector<int> counts = {1, 10, 100, 361};     // resting-board sizes
   std::string out = ".";
+  double nonsmooth_step_s = 0.0;  // > 0: ours' island sub-step h (default otherwise)
 };
 
 double median(std::vector<double> v) {
@@ -371,7 +372,7 @@ int run(const Options& o) {
   init_many_peers();
   std::vector<std::unique_ptr<ManyMethod>> methods;
   std::vector<std::unique_ptr<ManyMethod>> all;
-  all.push_back(make_ours_many());
+  all.push_back(make_ours_many(o.nonsmooth_step_s));
   all.push_back(make_bullet_many());
   all.push_back(make_ode_many());
   all.push_back(make_mujoco_many());
@@ -671,10 +672,12 @@ int main(int argc, char** argv) {
       for (std::string c; std::getline(list, c, ',');) o.counts.push_back(std::stoi(c));
     } else if (a == "--out" && i + 1 < argc) {
       o.out = argv[++i];
+    } else if (a == "--nonsmooth-step" && i + 1 < argc) {
+      o.nonsmooth_step_s = std::stod(argv[++i]);
     } else {
       std::cerr << "usage: many_benchmark [--quick] [--methods ours,bullet,ode,mujoco] [--counts "
                    "1,10,100,361] "
-                   "[--out DIR]\n";
+                   "[--out DIR] [--nonsmooth-step H_S]\n";
       return 2;
     }
   }

@@ -72,7 +72,9 @@ class ManyMethod {
   virtual std::string version() const = 0;
 };
 
-std::unique_ptr<ManyMethod> make_ours_many();
+// nonsmooth_step_s > 0: ours with that island sub-step h (NonsmoothContactOptions::step_s)
+// instead of the default (many_benchmark --nonsmooth-step, to measure what h does).
+std::unique_ptr<ManyMethod> make_ours_many(double nonsmooth_step_s = 0.0);
 std::unique_ptr<ManyMethod> make_bullet_many();
 std::unique_ptr<ManyMethod> make_ode_many();
 std::unique_ptr<ManyMethod> make_mujoco_many();

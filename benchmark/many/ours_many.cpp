@@ -16,6 +16,7 @@ namespace {
 
 class OursMany : public ManyMethod {
  public:
+  explicit OursMany(double nonsmooth_step_s) : nonsmooth_step_s_(nonsmooth_step_s) {}
   std::string name() const override { return "ours"; }
   bool is_peer() const override { return false; }
   bool has_sleep() const override { return true; }  // exact rest, not a threshold
@@ -45,6 +46,7 @@ class OursMany : public ManyMethod {
     config.table_material = m;
     config.stone_material = m;
     config.stone_contact = true;
+    if (nonsmooth_step_s_ > 0.0) config.options.nonsmooth.step_s = nonsmooth_step_s_;
     world_.reset();
     world_.emplace(config, std::vector<virtual_go::RigidBodyState>{}, 0.0);
     // Body 0 is the config's (the scene's black stone); body 1 the scene's white stone.
@@ -114,6 +116,7 @@ class OursMany : public ManyMethod {
   long events_reported() const override { return world_->counters().events; }
 
  private:
+  double nonsmooth_step_s_ = 0.0;  // 0: the default
   std::optional<virtual_go::World> world_;
   std::vector<virtual_go::WorldEvent> events_;
   std::vector<Setting> settings_;
@@ -123,6 +126,8 @@ class OursMany : public ManyMethod {
 
 }  // namespace
 
-std::unique_ptr<ManyMethod> make_ours_many() { return std::make_unique<OursMany>(); }
+std::unique_ptr<ManyMethod> make_ours_many(double nonsmooth_step_s) {
+  return std::make_unique<OursMany>(nonsmooth_step_s);
+}
 
 }  // namespace vg_bench

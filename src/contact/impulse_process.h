@@ -105,6 +105,7 @@ class ImpulseProcess {
       advance_linear(Eigen::Vector2d::Zero(), kInfinity);
       return;
     }
+    if (sticks_before_compression_ends()) return;
     namespace odeint = boost::numeric::odeint;
     auto rhs = [this](const SlipState& y, SlipState& dy, double p) {
       const Eigen::Vector3d u = velocity(p, Eigen::Vector2d(y[0], y[1]));
@@ -237,6 +238,8 @@ class ImpulseProcess {
     return Eigen::Vector3d(pt_compression_.x(), pt_compression_.y(), p_compression_);
   }
   bool stuck() const { return stuck_; }
+  // True when run() took the plastic full stop in closed form (no slip integration).
+  bool closed_form_stop() const { return closed_form_stop_; }
   bool stuck_at_compression() const { return stuck_at_compression_; }
   int steps() const { return steps_; }
   bool frictionless_fallback() const { return fallback_; }
@@ -284,6 +287,42 @@ class ImpulseProcess {
     const double l = 0.5 * (bracket.first + bracket.second);
     const Eigen::Vector2d s_eigen(kt.x() / (mu_ * kappa.x() + l), kt.y() / (mu_ * kappa.y() + l));
     ray_ = (eigen.eigenvectors() * s_eigen).normalized();
+  }
+
+  // A plastic impact (e* = 0) whose slip provably stops before compression ends, and can stick,
+  // ends with u+ = 0: P = -K^-1 u-, one 3x3 solve instead of the slip integration. Proof: while
+  // slipping along d (|d| = 1, dP_t/dp = -mu d) the slip speed s = |u_t| changes at
+  // ds/dp = d.(K_tn - mu K_tt d) <= |K_tn| - mu lmin(K_tt) =: -r, and the normal velocity at
+  // du_n/dp = 1 - mu K_nt.d <= 1 + mu |K_tn|. With r > 0 the slip has stopped by p_s <= s0 / r,
+  // and u_n < 0 (compression goes on) for p < -u_n- / (1 + mu |K_tn|) =: p_lo. If s0 / r < p_lo
+  // the slip stops during compression; the contact then sticks (can_stick_: the rate
+  // -K_tt^-1 K_tn keeping u_t = 0 lies in the cone) and stays stuck, u_n rising at the Schur
+  // complement K_nn - K_nt K_tt^-1 K_tn > 0, until u_n = 0: the end for e* = 0, with u = 0. The
+  // cone holds: the slip phase adds |dP_t| = mu dp, the stuck phase |dP_t| <= mu dp. Energy:
+  // dE = u-.P + P.K P / 2 = -u-.K^-1 u- / 2 < 0. The slip integration reaches the same P up to
+  // its tolerance (it snaps onto u_t = 0, then sticks along the same straight line). A computed
+  // P that round-off put outside the cone goes to the integration instead.
+  bool sticks_before_compression_ends() {
+    if (e_ != 0.0 || !can_stick_) return false;
+    const Eigen::Matrix2d ktt = k_.topLeftCorner<2, 2>();
+    const double ktn = k_.topRightCorner<2, 1>().norm();
+    const double half_trace = 0.5 * (ktt(0, 0) + ktt(1, 1));
+    const double half_diff = 0.5 * (ktt(0, 0) - ktt(1, 1));
+    const double lambda_min = half_trace - std::hypot(half_diff, ktt(0, 1));
+    const double r = mu_ * lambda_min - ktn;
+    const double s0 = u0_.head<2>().norm(), un0 = u0_.z();
+    if (!(r > 0.0) || !(un0 < 0.0)) return false;
+    if (!(s0 * (1.0 + mu_ * ktn) < -un0 * r)) return false;  // s0 / r < p_lo
+    const Eigen::Vector3d p = -k_.ldlt().solve(u0_);
+    if (!p.allFinite() || !(p.z() > 0.0) || !(p.head<2>().norm() <= mu_ * p.z())) return false;
+    pt_ = p.head<2>();
+    p_ = p.z();
+    w_ = 0.0;  // not needed for e* = 0: the impact ends at the end of compression
+    compressed_ = finished_ = stuck_ = stuck_at_compression_ = true;
+    p_compression_ = p_;
+    pt_compression_ = pt_;
+    closed_form_stop_ = true;
+    return true;
   }
 
   // The fallback: the impact goes on from where it is along K n (no tangential impulse) to the
@@ -366,6 +405,7 @@ class ImpulseProcess {
   Eigen::Vector2d ray_ = Eigen::Vector2d::Zero();  // the re-slip direction when !can_stick_
   int steps_ = 0, rejected_ = 0;
   bool fallback_ = false;
+  bool closed_form_stop_ = false;
 };
 
 // The law only dissipates; the numerical slip integration and the snap onto u_t = 0 can leave

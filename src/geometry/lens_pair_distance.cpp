@@ -27,6 +27,29 @@ constexpr int kSphereStarts = 96;
 constexpr int kPolishedStarts = 4;
 constexpr double kDistinctRad = 0.3;
 
+// The closed-form candidates of lens_pair_distance: the centre line, 4 cap-cap, 2 + 2 cap-rim.
+constexpr int kCandidates = 9;
+
+struct Start {
+  double value = -kInfinity;  // F(n), the supporting-plane gap along n
+  Eigen::Vector3d n = Eigen::Vector3d::UnitZ();
+};
+
+// The Fibonacci sphere of kSphereStarts unit directions, computed once.
+const std::array<Eigen::Vector3d, kSphereStarts>& fibonacci_sphere() {
+  static const std::array<Eigen::Vector3d, kSphereStarts> sphere = [] {
+    std::array<Eigen::Vector3d, kSphereStarts> s;
+    const double golden = M_PI * (3.0 - std::sqrt(5.0));
+    for (int k = 0; k < kSphereStarts; ++k) {
+      const double z = 1.0 - (2.0 * k + 1.0) / kSphereStarts;
+      const double r = std::sqrt(1.0 - z * z);
+      s[k] = Eigen::Vector3d(r * std::cos(golden * k), r * std::sin(golden * k), z);
+    }
+    return s;
+  }();
+  return sphere;
+}
+
 Eigen::Vector3d any_perpendicular(const Eigen::Vector3d& e) {
   const Eigen::Vector3d a =
       std::abs(e.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
@@ -164,11 +187,16 @@ LensPairContact lens_pair_distance(const LensGeometry& lens_a, const LensPose& p
   const Eigen::Vector3d& bb = pose_b.axis_world;
 
   // Closed-form candidates, one per pair of features: they are exact when their features are
-  // the closest ones, and good starts otherwise.
-  std::vector<Eigen::Vector3d> candidates;
+  // the closest ones, and good starts otherwise. Each with its F, in a fixed array (this is
+  // called for every pair of every sub-step of an island: no allocation).
+  std::array<Start, kCandidates> candidates;
+  int count = 0;
   auto add = [&](const Eigen::Vector3d& v) {
     const double length = v.norm();
-    if (length > 0.0 && std::isfinite(length)) candidates.push_back(v / length);
+    if (length > 0.0 && std::isfinite(length)) {
+      const Eigen::Vector3d n = v / length;
+      candidates[count++] = Start{problem.gap(n), n};
+    }
   };
   add(xb - xa);
   for (int sa : {1, -1}) {
@@ -186,11 +214,10 @@ LensPairContact lens_pair_distance(const LensGeometry& lens_a, const LensPose& p
   // positive start (when apart the positive maximum is unique).
   double best_value = -kInfinity;
   Eigen::Vector3d best_n = Eigen::Vector3d::UnitZ();
-  for (const Eigen::Vector3d& n : candidates) {
-    const double f = problem.gap(n);
-    if (f > best_value) {
-      best_value = f;
-      best_n = n;
+  for (int k = 0; k < count; ++k) {
+    if (candidates[k].value > best_value) {
+      best_value = candidates[k].value;
+      best_n = candidates[k].n;
     }
   }
   int steps = 0;
@@ -200,30 +227,31 @@ LensPairContact lens_pair_distance(const LensGeometry& lens_a, const LensPose& p
   } else {
     // Overlapping or touching: several local maxima are possible. Polish the best candidate
     // and the best well-separated local maxima of a Fibonacci sphere of directions.
-    std::vector<std::pair<double, Eigen::Vector3d>> starts;
-    for (const Eigen::Vector3d& n : candidates) starts.emplace_back(problem.gap(n), n);
-    const double golden = M_PI * (3.0 - std::sqrt(5.0));
+    std::array<Start, kCandidates + kSphereStarts> starts;
+    std::copy(candidates.begin(), candidates.begin() + count, starts.begin());
+    const std::array<Eigen::Vector3d, kSphereStarts>& sphere = fibonacci_sphere();
     for (int k = 0; k < kSphereStarts; ++k) {
-      const double z = 1.0 - (2.0 * k + 1.0) / kSphereStarts;
-      const double r = std::sqrt(1.0 - z * z);
-      const Eigen::Vector3d n(r * std::cos(golden * k), r * std::sin(golden * k), z);
-      starts.emplace_back(problem.gap(n), n);
+      starts[count + k] = Start{problem.gap(sphere[k]), sphere[k]};
     }
-    std::sort(starts.begin(), starts.end(),
-              [](const auto& p, const auto& q) { return p.first > q.first; });
-    std::vector<Eigen::Vector3d> chosen;
-    for (const auto& start : starts) {
+    const int total = count + kSphereStarts;
+    // In the order of falling F, each start at least kDistinctRad from every one chosen before
+    // is chosen. Touching flat stones give many starts of equal F; std::sort's order among them
+    // decides which is polished first, so the sort stays (on the same sequence as before).
+    std::sort(starts.begin(), starts.begin() + total,
+              [](const Start& p, const Start& q) { return p.value > q.value; });
+    std::array<Eigen::Vector3d, kPolishedStarts> chosen;
+    int chosen_count = 0;
+    const double distinct_cos = std::cos(kDistinctRad);
+    for (int k = 0; k < total && chosen_count < kPolishedStarts; ++k) {
       bool distinct = true;
-      for (const Eigen::Vector3d& c : chosen) {
-        distinct = distinct && c.dot(start.second) < std::cos(kDistinctRad);
+      for (int c = 0; c < chosen_count; ++c) {
+        distinct = distinct && chosen[c].dot(starts[k].n) < distinct_cos;
       }
-      if (!distinct) continue;
-      chosen.push_back(start.second);
-      if (static_cast<int>(chosen.size()) == kPolishedStarts) break;
+      if (distinct) chosen[chosen_count++] = starts[k].n;
     }
     best_value = -kInfinity;
-    for (const Eigen::Vector3d& start : chosen) {
-      const Eigen::Vector3d n = problem.ascend(start, &value, &steps);
+    for (int c = 0; c < chosen_count; ++c) {
+      const Eigen::Vector3d n = problem.ascend(chosen[c], &value, &steps);
       if (value > best_value) {
         best_value = value;
         best_n = n;

@@ -66,10 +66,8 @@ bool apart_by_bounds(const BoardDistance& a, const RigidBodyState& sa, const Boa
 // kCentreLineCost times the shortest.
 constexpr double kCentreLineCost = 1.5;
 
-LensPairContact pair_contact(const BoardDistance& a, const RigidBodyState& sa,
-                             const BoardDistance& b, const RigidBodyState& sb) {
-  const LensPose pa = lens_pose(sa), pb = lens_pose(sb);
-  const LensPairContact best = lens_pair_distance(a.lens(), pa, b.lens(), pb);
+LensPairContact pair_contact(const BoardDistance& a, const LensPose& pa, const BoardDistance& b,
+                             const LensPose& pb, const LensPairContact& best) {
   const Eigen::Vector3d centre_line = pb.center_world - pa.center_world;
   if (!(centre_line.norm() > 0.0)) return best;
   const LensPairContact along =
@@ -451,8 +449,9 @@ void NonsmoothIsland::project(std::vector<RigidBodyState>& s, std::vector<Member
             apart_by_bounds(members_[a].board, s[a], members_[b].board, s[b], 0.0)) {
           continue;
         }
-        const LensPairContact c = pair_contact(members_[a].board, s[a], members_[b].board, s[b]);
-        if (commit) ++counters_.pair_distances;
+        const LensPose pa = lens_pose(s[a]), pb = lens_pose(s[b]);
+        const LensPairContact c = pair_contact(members_[a].board, pa, members_[b].board, pb,
+                                               pair_distance(a, pa, b, pb, commit));
         if (c.gap_m >= 0.0) continue;
         auto blocked = [&](std::size_t i, const Eigen::Vector3d& push) {
           for (int k = 0; k < supports[i]; ++k) {
@@ -486,6 +485,30 @@ void NonsmoothIsland::project(std::vector<RigidBodyState>& s, std::vector<Member
   }
 }
 
+const LensPairContact& NonsmoothIsland::pair_distance(std::size_t a, const LensPose& pa,
+                                                      std::size_t b, const LensPose& pb,
+                                                      bool commit) {
+  // One memo per ordered pair: the projection's last sweep (no correction) and gather see the
+  // same poses, and so often do the next sub-step's checks. lens_pair_distance is a function of
+  // the two lenses and poses alone, so equal poses (bitwise) give the same contact.
+  const std::size_t n = members_.size();
+  if (pair_memo_.size() != n * n) pair_memo_.assign(n * n, PairMemo{});
+  PairMemo& m = pair_memo_[a * n + b];
+  const auto same = [](const LensPose& x, const LensPose& y) {
+    return x.center_world == y.center_world && x.axis_world == y.axis_world;
+  };
+  if (m.valid && same(m.pose_a, pa) && same(m.pose_b, pb)) {
+    if (commit) ++counters_.pair_distance_reuses;
+    return m.contact;
+  }
+  m.contact = lens_pair_distance(members_[a].board.lens(), pa, members_[b].board.lens(), pb);
+  m.pose_a = pa;
+  m.pose_b = pb;
+  m.valid = true;
+  if (commit) ++counters_.pair_distances;
+  return m.contact;
+}
+
 bool NonsmoothIsland::gather(const std::vector<RigidBodyState>& s, std::vector<MemberContacts>& mc,
                              std::vector<PairContact>& pairs, bool commit) {
   const std::size_t n = s.size();
@@ -509,8 +532,9 @@ bool NonsmoothIsland::gather(const std::vector<RigidBodyState>& s, std::vector<M
           apart_by_bounds(members_[a].board, s[a], members_[b].board, s[b], keep_m)) {
         continue;
       }
-      const LensPairContact c = pair_contact(members_[a].board, s[a], members_[b].board, s[b]);
-      if (commit) ++counters_.pair_distances;
+      const LensPose pa = lens_pose(s[a]), pb = lens_pose(s[b]);
+      const LensPairContact c = pair_contact(members_[a].board, pa, members_[b].board, pb,
+                                             pair_distance(a, pa, b, pb, commit));
       if (c.gap_m < -kGapToleranceM) clear = false;
       if (c.gap_m > keep_m) continue;
       ++mc[a].near;
@@ -777,10 +801,7 @@ NonsmoothIsland::Lattice NonsmoothIsland::next_lattice() {
                            (rim(i, s) + rim(j, r)) * ts +
                            members_[i].setup.gravity_world.norm() * ts * ts + o.contact_margin_m;
       if (!apart_by_bounds(members_[i].board, s, members_[j].board, r, reach)) {
-        const LensPairContact c = lens_pair_distance(members_[i].board.lens(), lens_pose(s),
-                                                     members_[j].board.lens(), lens_pose(r));
-        ++counters_.pair_distances;
-        reachable = c.gap_m <= reach;
+        reachable = pair_distance(i, lens_pose(s), j, lens_pose(r), true).gap_m <= reach;
       }
     }
     if (reachable) continue;

@@ -13,25 +13,24 @@
 //      other takes all of it: a stack converges in one sweep instead of halving per sweep);
 //   3. velocities: first (with options.pair_impacts) the impacts between members (the rule for
 //      simultaneous contacts,
-//      docs/physics.md "World", the fallback): of the member contacts within the margin, the one approaching
-//      fastest takes the two-body impact at the stone material's e* and mu (resolve_pair_impact,
-//      Stronge: dE <= 0), both members are updated, and again, until none approaches faster than
-//      the Zeno speed sqrt(2 |g| zeno_height_m) (4.4 mm/s); an impact whose rebound would be
-//      slower is taken plastic (the Zeno rule of contact/impact.h), so that a stack pressed by
-//      gravity does not bounce at every sub-step. Only in an island touching the board or the
-//      table: free of both, the World resolves every impact between flights itself (exact
-//      times, the fastest approach first) and hands an island only touching contacts.
-//      Each impact has dE <= 0, so the sequence never adds energy; for a row of equal stones it
-//      is Newton's cradle (contact/simultaneous_impacts.h). The same impacts are resolved once
-//      at the island's formation, on the states it is given, before any flight (contacts that
-//      close together close at one instant: the cradle's vanishing gaps). With e* = 0 there are
-//      none (the plastic impulses below are the same law). Then a plastic impulse at every
-//      contact within the margin that still approaches
-//      (board: resolve_impact with e* = 0; pair: resolve_pair_impact with e* = 0, both with
-//      Coulomb friction integrated through the impulse, so each impulse can only remove energy),
-//      Gauss-Seidel until none approaches (the board's contacts first; after 8 plain sweeps a
-//      stone that a pair impulse would press into the board is held and the other meets it as a
-//      moving surface, so a stack converges at once instead of halving per sweep);
+//      docs/physics.md "World", the fallback): of the member contacts within the margin, the one
+//      approaching fastest takes the two-body impact at the stone material's e* and mu
+//      (resolve_pair_impact, Stronge: dE <= 0), both members are updated, and again, until none
+//      approaches faster than the Zeno speed sqrt(2 |g| zeno_height_m) (4.4 mm/s); an impact whose
+//      rebound would be slower is taken plastic (the Zeno rule of contact/impact.h), so that a
+//      stack pressed by gravity does not bounce at every sub-step. Only in an island touching the
+//      board or the table: free of both, the World resolves every impact between flights itself
+//      (exact times, the fastest approach first) and hands an island only touching contacts. Each
+//      impact has dE <= 0, so the sequence never adds energy; for a row of equal stones it is
+//      Newton's cradle (contact/simultaneous_impacts.h). The same impacts are resolved once at the
+//      island's formation, on the states it is given, before any flight (contacts that close
+//      together close at one instant: the cradle's vanishing gaps). With e* = 0 there are none (the
+//      plastic impulses below are the same law). Then a plastic impulse at every contact within the
+//      margin that still approaches (board: resolve_impact with e* = 0; pair: resolve_pair_impact
+//      with e* = 0, both with Coulomb friction integrated through the impulse, so each impulse can
+//      only remove energy), Gauss-Seidel until none approaches (the board's contacts first; after 8
+//      plain sweeps a stone that a pair impulse would press into the board is held and the other
+//      meets it as a moving surface, so a stack converges at once instead of halving per sweep);
 //   4. the energy guard over the island's total energy (body_energy of every member): above the
 //      previous lattice state's, (v, L) of all members are scaled by one factor (every velocity
 //      constraint is linear and homogeneous, so no contact starts to approach); when the
@@ -87,6 +86,7 @@
 #include "virtual_go/body/rigid_body_state.h"
 #include "virtual_go/contact/material.h"
 #include "virtual_go/flight/integrator.h"
+#include "virtual_go/geometry/lens_pair_distance.h"
 #include "virtual_go/go/board_distance.h"
 #include "virtual_go/world/support_plane.h"
 
@@ -138,11 +138,12 @@ struct NonsmoothCounters {
   long energy_guard_scalings = 0;
   long separation_searches = 0;  // exact time-of-impact searches for the separated test
   long pair_impulses = 0;        // of `impulses`, those between two members
-  long pair_impacts = 0;       // of `pair_impulses`, two-body impacts at the material's e* (step 3)
-  long pair_projections = 0;   // of `projections`, those between two members
-  long pair_distances = 0;     // lens_pair_distance evaluations
-  long projection_sweeps = 0;  // Gauss-Seidel sweeps over the positions (committed steps)
-  long velocity_sweeps = 0;    // Gauss-Seidel sweeps over the velocities (committed steps)
+  long pair_impacts = 0;      // of `pair_impulses`, two-body impacts at the material's e* (step 3)
+  long pair_projections = 0;  // of `projections`, those between two members
+  long pair_distances = 0;    // lens_pair_distance evaluations
+  long pair_distance_reuses = 0;   // pair distances taken from the memo (same poses, bitwise)
+  long projection_sweeps = 0;      // Gauss-Seidel sweeps over the positions (committed steps)
+  long velocity_sweeps = 0;        // Gauss-Seidel sweeps over the velocities (committed steps)
   int most_projection_sweeps = 0;  // in one committed sub-step
   int most_velocity_sweeps = 0;    // in one committed sub-step
   long holds = 0;  // sub-steps whose touching members kept their poses (lift not payable)
@@ -263,6 +264,9 @@ class NonsmoothIsland {
   void keep_free_totals(std::vector<RigidBodyState>& s, const FreeAnchor& anchor, double t_s) const;
   void project(std::vector<RigidBodyState>& s, std::vector<MemberContacts>& mc, bool commit,
                int& sweeps);
+  // lens_pair_distance of members a and b at these poses, from the memo when it has them.
+  const LensPairContact& pair_distance(std::size_t a, const LensPose& pa, std::size_t b,
+                                       const LensPose& pb, bool commit);
   // The contacts within the margin of the poses in s; false if any overlaps beyond tolerance.
   bool gather(const std::vector<RigidBodyState>& s, std::vector<MemberContacts>& mc,
               std::vector<PairContact>& pairs, bool commit);
@@ -306,6 +310,12 @@ class NonsmoothIsland {
   double reached_;
   std::optional<IslandOutcome> finished_;
   NonsmoothCounters counters_;
+  struct PairMemo {
+    bool valid = false;
+    LensPose pose_a, pose_b;
+    LensPairContact contact;
+  };
+  std::vector<PairMemo> pair_memo_;  // members_.size()^2, by a * n + b
 };
 
 }  // namespace virtual_go
