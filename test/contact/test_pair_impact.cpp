@@ -82,6 +82,22 @@ struct Fixture {
                                 const Eigen::Vector3d& omega) {
     return vg::with_angular_velocity_world(model, s, omega);
   }
+  // A black (a) and a white (b) stone in random poses, b moved along the normal until the two
+  // touch; returns their contact (gap measured before the move).
+  vg::LensPairContact touching_pair(vg::RigidBodyState& a, vg::RigidBodyState& b) {
+    a.position_world = 0.01 * random_unit();
+    a.orientation = random_orientation();
+    b.orientation = random_orientation();
+    b.position_world = a.position_world + 0.03 * random_unit();
+    const vg::LensPairContact c =
+        vg::lens_pair_distance(lens_a, vg::lens_pose(a), lens_b, vg::lens_pose(b));
+    b.position_world -= c.gap_m * c.normal_world;
+    return c;
+  }
+  // The touching point: midway between the witnesses after b was moved.
+  static Eigen::Vector3d contact_point(const vg::LensPairContact& c) {
+    return 0.5 * (c.point_a_world + c.point_b_world - c.gap_m * c.normal_world);
+  }
 };
 
 }  // namespace
@@ -200,14 +216,8 @@ TEST(PairImpact, RandomImpactsConserveMomentumAndNeverGainEnergy) {
   int stuck = 0;
   while (impacts < 10000) {
     vg::RigidBodyState a, b;
-    a.position_world = 0.01 * f.random_unit();
-    a.orientation = f.random_orientation();
-    b.orientation = f.random_orientation();
-    b.position_world = a.position_world + 0.03 * f.random_unit();
-    const vg::LensPairContact c =
-        vg::lens_pair_distance(f.lens_a, vg::lens_pose(a), f.lens_b, vg::lens_pose(b));
-    b.position_world -= c.gap_m * c.normal_world;
-    const Eigen::Vector3d p = 0.5 * (c.point_a_world + c.point_b_world - c.gap_m * c.normal_world);
+    const vg::LensPairContact c = f.touching_pair(a, b);
+    const Eigen::Vector3d p = f.contact_point(c);
     a = f.with_omega(f.model_a, a, 60.0 * f.uniform(f.rng) * f.random_unit());
     b = f.with_omega(f.model_b, b, 60.0 * f.uniform(f.rng) * f.random_unit());
     a.velocity_world = f.uniform(f.rng) * f.random_unit();
@@ -441,14 +451,8 @@ TEST(PairImpact, PlasticImpactsAgreeWithAnIndependentSlipIntegration) {
   double worst_closed = 0.0, worst_integrated = 0.0, worst_u_after = 0.0;
   while (compared < 300) {
     vg::RigidBodyState a, b;
-    a.position_world = 0.01 * f.random_unit();
-    a.orientation = f.random_orientation();
-    b.orientation = f.random_orientation();
-    b.position_world = a.position_world + 0.03 * f.random_unit();
-    const vg::LensPairContact c =
-        vg::lens_pair_distance(f.lens_a, vg::lens_pose(a), f.lens_b, vg::lens_pose(b));
-    b.position_world -= c.gap_m * c.normal_world;
-    const Eigen::Vector3d p = 0.5 * (c.point_a_world + c.point_b_world - c.gap_m * c.normal_world);
+    const vg::LensPairContact c = f.touching_pair(a, b);
+    const Eigen::Vector3d p = f.contact_point(c);
     // Mostly slow tangential motion against the approach, as in a pile: many stick.
     const double spin = f.uniform(f.rng) < 0.5 ? 0.0 : 5.0 * f.uniform(f.rng);
     a = f.with_omega(f.model_a, a, spin * f.random_unit());
