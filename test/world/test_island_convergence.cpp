@@ -1,26 +1,32 @@
 // Convergence in the sub-step h of the island scheme (nonsmooth_island.h: Moreau-Jean, e = 0,
 // Coulomb; its header says "first order in h"), measured on scenes whose answer is smooth in the
-// data, each against a reference that does not use the scheme: the exact plane model
-// (contact/plane_contact.h: the Newton-Euler equations of a lens on a plane in coordinates that
-// keep the contact, integrated by DOP853 at 1e-12; itself checked against closed forms and
-// Boost.Odeint in test_plane_contact), with the same contact law (Coulomb mu on the board, no
-// rolling resistance and no spinning friction, which the island does not have):
-//   slide     one stone sliding and spinning on the board's top face (the single-stone fallback,
-//             NonsmoothContact, kept from handing over to the plane model): both apply;
+// data, each against a reference written here that does not use the scheme: the Newton-Euler
+// equations of the lenses held on their contacts by Lagrange multipliers, integrated by
+// Boost.Odeint (LensOde below). Where the exact plane model applies too (one stone sliding on the
+// board) the two agree to 1e-15 m (TheReferenceIsTheExactPlaneModel). Contact laws as the
+// island's: Coulomb on the board, no rolling resistance, no spinning friction.
+//   slide     one stone sliding and spinning on the board's top face (the island with one member,
+//             which is the single-stone fallback NonsmoothContact, kept from handing over to the
+//             plane model);
 //   abreast   two stones touching rim to rim across their motion, sliding together: both pitch
 //             alike about the line of centres, so the rims stay touching (gap 0) and carry no
-//             load; each stone is the plane model's one stone;
+//             load; each stone is the reference's one stone;
 //   push      a sliding stone strikes a resting one touching it ahead (impulses between members
 //             plastic): the central plastic impact (contact at the centres' height, normal along
 //             the centre line) leaves both at v0 / 2, flat, at once; then each pitches under its
 //             friction, the rims part (translated copies: gap 2 a (1 - cos theta)) and each is the
-//             plane model's stone from v0 / 2.
-// The error is the largest distance of a stone's centre from the reference's at T, on the
-// lattice (T = K h exactly: a sample between lattice points is an energy-scaled partial step),
-// for h = 4e-4 ... 2.5e-5 s; the observed order of each halving is log2(E(2h) / E(h)).
-// The leading error of the scheme in a slide is that of symplectic Euler on x'' = -mu g (the
-// flight moves the stone with the velocity before the sub-step's friction impulse):
-// x_K = x(T) + mu g T h / 2, a first-order term of 0.59 um per 1e-4 s at T = 0.04 s, mu = 0.3.
+//             reference's one stone from v0 / 2;
+//   stack     a stone resting tilted on another slides off it, board and stones frictionless:
+//             two bodies, two sustained loaded contacts (board-lower, lower-upper).
+// The error is the largest distance of a stone's centre from the reference's at T = 0.04 s, on
+// the lattice (T = K h exactly: a sample between lattice points is an energy-scaled partial
+// step), for h = 4e-4 ... 2.5e-5 s; the observed order of each halving is log2(E(2h) / E(h)).
+// Measured (centre error at h = 1e-4; orders): slide 6.4 um, 1.000 throughout; abreast 6.4 um,
+// 1.000; push 12.8 um, 0.996-1.000; stack 22.8 um, 0.81-0.86 (rising). A sliding lens rocks
+// (friction c below its centre tips it towards mu c / d = 7.3 degrees, at 48 rad/s), and the
+// scheme's lag in that rocking dominates: the frozen slide's symplectic-Euler term mu g T h / 2
+// is only 0.59 um of the 6.4. Checked that the tests can fail: a reference with mu 1 % higher
+// gives orders 0.40, 0.25, 0.14, 0.08; the stack with the island's default sweeps 0.79 ... 0.62.
 #include <gtest/gtest.h>
 
 #include <boost/numeric/odeint.hpp>
@@ -331,7 +337,9 @@ Convergence measure(const char* name, const std::vector<vg::RigidBodyState>& sta
 void expect_first_order(const Convergence& c, double bound_at_default_m) {
   for (std::size_t i = 0; i < c.order.size(); ++i) {
     EXPECT_GE(c.order[i], 0.8) << "halving " << i;
-    if (i > 0) EXPECT_GE(c.order[i], c.order[i - 1] - 0.05) << "halving " << i;
+    if (i > 0) {
+      EXPECT_GE(c.order[i], c.order[i - 1] - 0.05) << "halving " << i;
+    }
   }
   ASSERT_EQ(kSteps[2], 1e-4);
   EXPECT_LE(c.error_m[2], bound_at_default_m);
