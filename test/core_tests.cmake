@@ -29,6 +29,7 @@ foreach(core_test
     go/test_go_position
     go/test_game_replay
     contact/test_material
+    contact/test_bracketed_root
     contact/test_flight_gap_bound
     contact/test_pair_gap_bound
     contact/test_time_of_impact

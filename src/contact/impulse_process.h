@@ -16,6 +16,7 @@
 #include <cmath>
 #include <limits>
 
+#include "virtual_go/contact/bracketed_root.h"
 #include "virtual_go/contact/impact.h"
 
 namespace virtual_go {
@@ -134,15 +135,42 @@ class ImpulseProcess {
       plain.do_step(rhs, y0, p0, y, d);
       return y;
     };
-    auto locate = [&](auto&& event, double length) {
-      const double at_end = event(length);
-      if (at_end == 0.0 || !(length > 0.0)) return length;
-      std::uintmax_t iterations = 100;
-      const auto bracket = boost::math::tools::toms748_solve(
-          event, 0.0, length, event(0.0), at_end,
-          boost::math::tools::eps_tolerance<double>(std::numeric_limits<double>::digits - 2),
-          iterations);
-      return bracket.second;  // the side where the event has happened
+    // The crossing of a rising event on the accepted step from (y_old, p_old) to (y_end, p_end),
+    // where it has happened: the samples between are plain re-steps from y_old, and
+    // rising_root's Newton uses the events' closed-form slopes. Returns p at the crossing (the
+    // side where the event has happened) and sets *y_at to the state there (the sample itself,
+    // not stepped again).
+    auto locate = [&](auto&& event, const SlipState& y_old, double p_old, const SlipState& y_end,
+                      double p_end, SlipState* y_at) {
+      const double length = p_end - p_old;
+      SlipState y_hi = y_end;
+      auto sample = [&](double d) {
+        const SlipState yd = step_from(y_old, p_old, d);
+        const RootSample r = event(yd, p_old + d);
+        if (r.value >= 0.0) y_hi = yd;
+        return r;
+      };
+      // The accepted step is the sample at its end (the event has happened there).
+      const RootSample at_start = event(y_old, p_old), at_end = event(y_end, p_end);
+      if (at_end.value == 0.0 || !(length > 0.0) || !(at_start.value < 0.0)) {
+        *y_at = y_end;
+        return p_end;
+      }
+      const double at = rising_root(sample, 0.0, at_start, length, at_end.value);
+      *y_at = y_hi;
+      return at < length ? p_old + at : p_end;
+    };
+    // u_n and its rate du_n/dp = K_n . (dP_t/dp, 1), dP_t/dp = -mu u_t / |u_t|.
+    auto normal_velocity = [&](const SlipState& y, double p) {
+      const Eigen::Vector3d u = velocity(p, Eigen::Vector2d(y[0], y[1]));
+      const double s = u.head<2>().norm();
+      const Eigen::Vector2d rate =
+          s > 0.0 ? Eigen::Vector2d(-mu_ * u.head<2>() / s) : Eigen::Vector2d(0, 0);
+      return RootSample{u.z(), k_(2, 2) + k_(2, 0) * rate.x() + k_(2, 1) * rate.y()};
+    };
+    // W - W_target and its rate dW/dp = u_n.
+    auto work_left = [&](const SlipState& y, double p) {
+      return RootSample{y[2] - w_target_, velocity(p, Eigen::Vector2d(y[0], y[1])).z()};
     };
 
     double h = 1e-2;
@@ -209,23 +237,18 @@ class ImpulseProcess {
         continue;
       }
       ++steps_;
-      const double length = p - p_old;
       if (!compressed_ && u_new.z() >= 0.0) {
-        const double at = locate(
-            [&](double d) {
-              const SlipState yd = step_from(y_old, p_old, d);
-              return velocity(p_old + d, Eigen::Vector2d(yd[0], yd[1])).z();
-            },
-            length);
-        commit(step_from(y_old, p_old, at), p_old + at);
+        SlipState y_at;
+        const double p_at = locate(normal_velocity, y_old, p_old, y, p, &y_at);
+        commit(y_at, p_at);
         end_compression();
         if (finished_) return;
         continue;
       }
       if (compressed_ && y[2] >= w_target_) {
-        const double at =
-            locate([&](double d) { return step_from(y_old, p_old, d)[2] - w_target_; }, length);
-        commit(step_from(y_old, p_old, at), p_old + at);
+        SlipState y_at;
+        const double p_at = locate(work_left, y_old, p_old, y, p, &y_at);
+        commit(y_at, p_at);
         finished_ = true;
         return;
       }

@@ -25,6 +25,14 @@ void require_range(const std::string& field, double value, double lo, double hi,
 }  // namespace
 
 void validate_material(const std::string& field, const ContactMaterial& m) {
+  // Every impulse of the nonsmooth fallback validates its material: the field names (four
+  // string concatenations) are built only when a value is out of range.
+  auto within = [](double value, double lo, double hi) { return value >= lo && value <= hi; };
+  if (within(m.restitution, 0.0, 1.0) && within(m.friction, 0.0, kMaxFriction) &&
+      within(m.rolling_resistance_m, 0.0, kMaxCoupleLengthM) &&
+      within(m.spinning_friction_m, 0.0, kMaxCoupleLengthM)) {
+    return;
+  }
   require_range(field + "/restitution", m.restitution, 0.0, 1.0, "");
   require_range(field + "/friction", m.friction, 0.0, kMaxFriction, "");
   require_range(field + "/rolling_resistance", m.rolling_resistance_m, 0.0, kMaxCoupleLengthM,
