@@ -263,6 +263,8 @@ class World {
     std::vector<StoneId> members;
     std::vector<char> in;
     NonsmoothCounters seen;
+    std::vector<StoneId> obstacles;  // the resting stones it keeps out of (next_interaction)
+    std::vector<std::size_t> woken;  // stone indices its last advance woke (advance_islands)
   };
   // Stage 3: every awake stone to t_s by its own model (the per-stone advance with the work
   // limit); false when the budget stopped it first (time() is then the stop time).
@@ -282,7 +284,8 @@ class World {
   // time() by less than a pass; its next advance waits for the world.)
   // Each island gets at least one sub-step; one that stops at the work limit ends the pass there.
   void advance_islands(double& t_s, long work_limit);
-  // To t_s, the first lattice time where members leave, or where the work limit stopped it
+  // To t_s, the first lattice time where members leave, where a sub-step acted on an obstacle
+  // (run.woken: the island is formed anew there with it), or where the work limit stopped it
   // (returned); members that leave are left there.
   double advance_island(IslandRun& run, double t_s, long work_limit);
   // Each member but `except` goes on in its own single-stone fallback.
