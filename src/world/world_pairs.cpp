@@ -421,7 +421,8 @@ World::Interaction World::next_interaction(double t_s, long work_limit) {
     }
     // A stone an island or the fallback moves may jump within the pass (jump_bound): it joins
     // the stones within twice its jump (and the join margin), which the island then keeps
-    // (form_island), and the steps below keep that far from the others.
+    // (form_island), and the steps below keep that far from the others. (An island's resting
+    // neighbours are its obstacles instead, above.)
     const bool impulsive =
         hi.mode == StoneMode::nonsmooth_contact || hj.mode == StoneMode::nonsmooth_contact;
     const double reach = jump_bound(i) + (is_awake(j) ? jump_bound(j) : 0.0);

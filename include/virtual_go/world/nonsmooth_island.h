@@ -58,6 +58,13 @@
 // kept: no handed-out state overlaps (board and table gap >= -1e-12 m, pair gap >= -1e-12 m), no
 // energy is created, every impulse stays in Coulomb's cone.
 //
+// Obstacles (set_obstacles, IslandObstacle): resting stones near the island, kept out of as the
+// board is (step 2 moves only the member, step 3 gives the member a plastic one-body impulse on
+// the obstacle's fixed surface; step 3's impacts between members leave them out) and never moved;
+// they are not members (no energy, no rest, no events). A committed sub-step that acts on one
+// beyond round-off is not committed: the island stops at the lattice point before it and names
+// the obstacle (IslandOutcome::woken), to be formed anew with it as a member.
+//
 // The sub-steps lie on the lattice t0 + k h, so the motion does not depend on when it is sampled.
 // A sample at t between lattice points k and k+1 is a partial sub-step from k (its poses) whose
 // kinetic energy is scaled so that the island's energy equals that of lattice state k+1 (or, when

@@ -26,7 +26,11 @@
 // (4) resolve there: a pair impact (Stronge, the config's stone_material; both stones get an
 // `impact` naming the other; a resting stone hit gets a `wake` first), or, for a sustained contact
 // (a resting or touching partner, a rebound below the Zeno speed, a stone in contact within 1 nm of
-// another), one NonsmoothIsland for the stones involved and the islands they are in. Members leave
+// another), one NonsmoothIsland for the stones involved and the islands they are in. A resting
+// stone within an island member's reach over the pass does not join: it is the island's fixed
+// obstacle (kept out of, never moved) and wakes only when the island's solve acts on it; the
+// island then stops at the lattice point before that sub-step and is formed anew there with it
+// (the pass ends there, as where a member leaves). Members leave
 // the island as the single-stone fallback's stone does (flight, plane contact, rest); an island
 // that rests, rests whole. Not exact yet: a flight that begins inside a step (a lift-off, a
 // separation from an island) is searched against other stones from the end of that step; a command
