@@ -59,7 +59,8 @@ foreach(core_test
     world/test_world_crowd
     world/test_stone_placement
     world/test_world_resting_cost
-    world/test_world_reach_bound)
+    world/test_world_reach_bound
+    world/test_world_full_board_throw)
   get_filename_component(target ${core_test} NAME)
   catkin_add_gtest(${target} test/${core_test}.cpp)
   target_link_libraries(${target} virtual_go_core GTest::gtest_main)

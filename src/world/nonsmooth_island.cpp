@@ -66,15 +66,20 @@ bool apart_by_bounds(const BoardDistance& a, const RigidBodyState& sa, const Boa
 // kCentreLineCost times the shortest.
 constexpr double kCentreLineCost = 1.5;
 
-LensPairContact pair_contact(const BoardDistance& a, const LensPose& pa, const BoardDistance& b,
+LensPairContact pair_contact(const LensGeometry& a, const LensPose& pa, const LensGeometry& b,
                              const LensPose& pb, const LensPairContact& best) {
   const Eigen::Vector3d centre_line = pb.center_world - pa.center_world;
   if (!(centre_line.norm() > 0.0)) return best;
   const LensPairContact along =
-      lens_pair_contact_along(a.lens(), pa, b.lens(), pb, centre_line.normalized());
+      lens_pair_contact_along(a, pa, b, pb, centre_line.normalized());
   const bool as_good = along.gap_m >= best.gap_m - kGapToleranceM;
   const bool cheap = best.gap_m < 0.0 && along.gap_m >= kCentreLineCost * best.gap_m;
   return as_good || cheap ? along : best;
+}
+
+LensPairContact pair_contact(const BoardDistance& a, const LensPose& pa, const BoardDistance& b,
+                             const LensPose& pb, const LensPairContact& best) {
+  return pair_contact(a.lens(), pa, b.lens(), pb, best);
 }
 
 }  // namespace
@@ -288,7 +293,8 @@ bool NonsmoothIsland::scale_kinetic_energy(std::vector<RigidBodyState>& s, doubl
 
 bool NonsmoothIsland::free_of_board(const std::vector<MemberContacts>& mc) const {
   for (std::size_t i = 0; i < mc.size(); ++i) {
-    if (lattice_.active[i] && mc[i].board > 0) return false;
+    // An obstacle is an outside body, as the board is.
+    if (lattice_.active[i] && (mc[i].board > 0 || mc[i].obstacles > 0)) return false;
   }
   return true;
 }
@@ -337,6 +343,7 @@ void NonsmoothIsland::resolve_pair_impacts(std::vector<RigidBodyState>& s,
     const PairContact* fastest = nullptr;
     double fastest_u_n = -impact_mps;
     for (const PairContact& p : pairs) {
+      if (p.obstacle) continue;  // the plastic sweeps meet it (and wake it)
       const double u_n = p.normal_world.dot(
           point_velocity_world(members_[p.b].setup.model, s[p.b], p.point_world) -
           point_velocity_world(members_[p.a].setup.model, s[p.a], p.point_world));
@@ -478,11 +485,93 @@ void NonsmoothIsland::project(std::vector<RigidBodyState>& s, std::vector<Member
         corrected = true;
       }
     }
+    if (project_obstacles(s, mc, commit)) corrected = true;
     if (!corrected) {
       ++sweeps;
       return;
     }
   }
+}
+
+bool NonsmoothIsland::project_obstacles(std::vector<RigidBodyState>& s,
+                                        std::vector<MemberContacts>& mc, bool commit) {
+  // Only the member moves, along the pair normal by the whole overlap, as out of the board.
+  bool corrected = false;
+  for (std::size_t a = 0; a < s.size(); ++a) {
+    if (!lattice_.active[a]) continue;
+    for (std::size_t o = 0; o < obstacles_.size(); ++o) {
+      const double reach = members_[a].board.lens().half_width() + obstacles_[o].lens.half_width();
+      if ((obstacles_[o].state.position_world - s[a].position_world).squaredNorm() >
+          reach * reach) {
+        continue;
+      }
+      const LensPose pa = lens_pose(s[a]);
+      const LensPairContact c = pair_contact(members_[a].board.lens(), pa, obstacles_[o].lens,
+                                             lens_pose(obstacles_[o].state),
+                                             obstacle_distance(a, pa, o, commit));
+      if (c.gap_m >= 0.0) continue;
+      if (c.gap_m < -kGapToleranceM) obstacle_acted_[o] = 1;
+      s[a].position_world -= (kCorrectionSlackM - c.gap_m) * c.normal_world;
+      if (commit) {
+        counters_.deepest_overlap_m = std::max(counters_.deepest_overlap_m, -c.gap_m);
+        ++counters_.projections;
+        ++counters_.obstacle_projections;
+      }
+      mc[a].loaded = true;
+      corrected = true;
+    }
+  }
+  return corrected;
+}
+
+bool NonsmoothIsland::obstacle_impulses(std::vector<RigidBodyState>& s,
+                                        std::vector<MemberContacts>& mc,
+                                        const std::vector<PairContact>& pairs, bool commit) {
+  // The member's plastic impact on a fixed surface (the obstacle's, normal towards the member).
+  bool acted = false;
+  for (const PairContact& p : pairs) {
+    if (!p.obstacle) continue;
+    const MotionModel& model = members_[p.a].setup.model;
+    const double u_n =
+        -p.normal_world.dot(point_velocity_world(model, s[p.a], p.point_world));
+    if (!(u_n < -kApproachToleranceMps)) continue;
+    s[p.a] = resolve_impact(model, s[p.a], p.point_world, -p.normal_world, stone_plastic_,
+                            members_[p.a].setup.gravity_world)
+                 .state;
+    obstacle_acted_[p.b] = 1;
+    mc[p.a].loaded = true;
+    acted = true;
+    if (commit) {
+      ++counters_.impulses;
+      ++counters_.obstacle_impulses;
+    }
+  }
+  return acted;
+}
+
+void NonsmoothIsland::set_obstacles(std::vector<IslandObstacle> obstacles) {
+  for (IslandObstacle& o : obstacles) o.state = o.state.validated();
+  obstacles_ = std::move(obstacles);
+  obstacle_memo_.assign(members_.size() * obstacles_.size(), PairMemo{});
+}
+
+const LensPairContact& NonsmoothIsland::obstacle_distance(std::size_t a, const LensPose& pa,
+                                                          std::size_t o, bool commit) {
+  // The obstacle does not move: the memo holds while the member's pose is the same (bitwise).
+  PairMemo& m = obstacle_memo_[a * obstacles_.size() + o];
+  const auto same = [](const LensPose& x, const LensPose& y) {
+    return x.center_world == y.center_world && x.axis_world == y.axis_world;
+  };
+  if (m.valid && same(m.pose_a, pa)) {
+    if (commit) ++counters_.pair_distance_reuses;
+    return m.contact;
+  }
+  m.contact = lens_pair_distance(members_[a].board.lens(), pa, obstacles_[o].lens,
+                                 lens_pose(obstacles_[o].state));
+  m.pose_a = pa;
+  m.valid = true;
+  if (commit) ++counters_.pair_distances;
+  return m.contact;
 }
 
 const LensPairContact& NonsmoothIsland::pair_distance(std::size_t a, const LensPose& pa,
@@ -545,6 +634,27 @@ bool NonsmoothIsland::gather(const std::vector<RigidBodyState>& s, std::vector<M
       pairs.push_back(PairContact{a, b, 0.5 * (c.point_a_world + c.point_b_world), c.normal_world});
     }
   }
+  for (std::size_t a = 0; a < n; ++a) {
+    mc[a].obstacles = 0;
+    if (!lattice_.active[a]) continue;
+    for (std::size_t o = 0; o < obstacles_.size(); ++o) {
+      const double reach = members_[a].board.lens().half_width() +
+                           obstacles_[o].lens.half_width() + options_.contact_margin_m;
+      if ((obstacles_[o].state.position_world - s[a].position_world).squaredNorm() >
+          reach * reach) {
+        continue;
+      }
+      const LensPose pa = lens_pose(s[a]);
+      const LensPairContact c = pair_contact(members_[a].board.lens(), pa, obstacles_[o].lens,
+                                             lens_pose(obstacles_[o].state),
+                                             obstacle_distance(a, pa, o, commit));
+      if (c.gap_m < -kGapToleranceM) clear = false;
+      if (c.gap_m > options_.contact_margin_m) continue;
+      ++mc[a].obstacles;
+      pairs.push_back(
+          PairContact{a, o, 0.5 * (c.point_a_world + c.point_b_world), c.normal_world, true});
+    }
+  }
   return clear;
 }
 
@@ -556,6 +666,7 @@ NonsmoothIsland::Step NonsmoothIsland::sub_step(const Lattice& lattice_from, dou
   Step out;
   out.states = from;
   out.contacts.assign(n, MemberContacts{});
+  obstacle_acted_.assign(obstacles_.size(), 0);
   // 1. Exact free flight.
   for (std::size_t i = 0; i < n; ++i) {
     if (lattice_.active[i]) out.states[i] = ExactMotion(members_[i].setup, from[i]).state_at(h_s);
@@ -605,7 +716,9 @@ NonsmoothIsland::Step NonsmoothIsland::sub_step(const Lattice& lattice_from, dou
         if (commit) ++counters_.impulses;
       }
     }
+    if (obstacle_impulses(s, out.contacts, pairs, commit)) acted = true;
     for (const PairContact& p : pairs) {
+      if (p.obstacle) continue;
       const MotionModel &ma = members_[p.a].setup.model, &mb = members_[p.b].setup.model;
       const double u_n = p.normal_world.dot(point_velocity_world(mb, s[p.b], p.point_world) -
                                             point_velocity_world(ma, s[p.a], p.point_world));
@@ -680,8 +793,8 @@ NonsmoothIsland::Step NonsmoothIsland::sub_step(const Lattice& lattice_from, dou
     if (commit) ++counters_.holds;
     for (std::size_t i = 0; i < n; ++i) {
       if (!lattice_.active[i]) continue;
-      const bool free =
-          out.contacts[i].board == 0 && out.contacts[i].stones == 0 && !out.contacts[i].loaded;
+      const bool free = out.contacts[i].board == 0 && out.contacts[i].stones == 0 &&
+                        out.contacts[i].obstacles == 0 && !out.contacts[i].loaded;
       if (free) continue;
       s[i] = from[i];
       s[i].velocity_world.setZero();
@@ -708,6 +821,9 @@ NonsmoothIsland::Step NonsmoothIsland::sub_step(const Lattice& lattice_from, dou
     if (excess > 0.0) {
       counters_.largest_energy_excess_j = std::max(counters_.largest_energy_excess_j, excess);
     }
+    for (std::size_t o = 0; o < obstacle_acted_.size(); ++o) {
+      if (obstacle_acted_[o]) out.woken.push_back(o);
+    }
   }
   return out;
 }
@@ -720,6 +836,8 @@ NonsmoothIsland::Lattice NonsmoothIsland::next_lattice() {
   next.states = step.states;
   next.anchor = step.anchor;
   next.left.clear();
+  next.woken = step.woken;
+  if (!next.woken.empty()) return next;  // not to be committed (advance)
   const std::size_t n = next.states.size();
   const NonsmoothContactOptions& o = options_;
   auto calm_for_long = [&](std::size_t i) {
@@ -768,7 +886,7 @@ NonsmoothIsland::Lattice NonsmoothIsland::next_lattice() {
   for (std::size_t i = 0; i < n; ++i) {
     if (!next.active[i] || leaving[i]) continue;
     const MemberContacts& m = step.contacts[i];
-    if (m.board + m.stones == 0 || !calm_for_long(i)) all_rest = false;
+    if (m.board + m.stones + m.obstacles == 0 || !calm_for_long(i)) all_rest = false;
   }
   for (std::size_t i = 0; i < n; ++i) {
     if (!next.active[i] || leaving[i]) continue;
@@ -837,6 +955,16 @@ IslandOutcome NonsmoothIsland::outcome(double t) const {
   return o;
 }
 
+IslandOutcome NonsmoothIsland::wake_outcome(const std::vector<std::size_t>& woken) {
+  // A sub-step is computed fresh only from a lattice point no call has gone past (a sample
+  // computes it first), so the World's stones are not beyond lattice(steps_).
+  reached_ = lattice(steps_);
+  IslandOutcome o = outcome(reached_);
+  o.woken = woken;
+  counters_.obstacle_wakes += static_cast<long>(woken.size());
+  return o;
+}
+
 IslandOutcome NonsmoothIsland::advance(double t_end_s, long max_steps) {
   require_finite("nonsmooth advance time", t_end_s);
   if (max_steps < 0) {
@@ -866,6 +994,7 @@ IslandOutcome NonsmoothIsland::advance(double t_end_s, long max_steps) {
     }
     Lattice next = ahead_ ? std::move(*ahead_) : next_lattice();
     ahead_.reset();
+    if (!next.woken.empty()) return wake_outcome(next.woken);
     ++steps_;
     ++counters_.steps;
     lattice_ = std::move(next);
@@ -879,15 +1008,21 @@ IslandOutcome NonsmoothIsland::advance(double t_end_s, long max_steps) {
       return o;
     }
   }
-  reached_ = t_end_s;
   const double since = t_end_s - lattice(steps_);
-  if (since <= 0.0) return outcome(t_end_s);
+  if (since <= 0.0) {
+    reached_ = t_end_s;
+    return outcome(t_end_s);
+  }
+  // The next lattice state first: a sub-step to it that wakes obstacles is redone by the World
+  // from lattice(steps_), which no sample has passed yet.
+  if (!ahead_) ahead_ = next_lattice();
+  if (!ahead_->woken.empty()) return wake_outcome(ahead_->woken);
+  reached_ = t_end_s;
   // A sample between lattice points: the partial sub-step's poses with the island's energy set
   // to that of the next lattice state (computed ahead; committing it later gives the same
   // state), so the energies handed out never rise; when scaling cannot reach it (no kinetic
   // energy, or the potential above it), the next lattice state itself.
   ++counters_.samples;
-  if (!ahead_) ahead_ = next_lattice();
   const double next_j = energy(ahead_->states, lattice_.active);
   Step partial = sub_step(lattice_, since, false);
   IslandOutcome o;

@@ -161,6 +161,7 @@ AdvanceResult World::advance_to(double t_s, std::vector<WorldEvent>& events,
   do {
     ++counters_.stages;
     const double before = time_;
+    const long wakes_before = counters_.obstacle_wakes;
     long limit = std::numeric_limits<long>::max();
     if (bounded) {
       // A spent budget ends the call between passes, never before the first one's step: every
@@ -180,7 +181,11 @@ AdvanceResult World::advance_to(double t_s, std::vector<WorldEvent>& events,
       break;
     }
     if (time_ == next.time_s) resolve_interaction(next);  // stage 4
-    passes_at_instant = time_ == before ? passes_at_instant + 1 : 0;
+    // A pass that ended where an island woke obstacles made progress: the island grew (at most
+    // once per stone).
+    passes_at_instant = time_ == before && counters_.obstacle_wakes == wakes_before
+                            ? passes_at_instant + 1
+                            : 0;
     if (passes_at_instant > kMaxTransitionsAtInstant * 4) {
       // A standoff of stone-stone events at one instant (not expected: every impact removes
       // energy and a sustained contact goes to an island): step on without stone contact.

@@ -346,6 +346,11 @@ World::Interaction World::next_interaction(double t_s, long work_limit) {
   counters_.broad_phase_tests += broad_phase_.counters().bound_tests - tests_before;
   counters_.pair_candidates += static_cast<long>(pairs.size());
   const PairTimeOfImpactOptions full_search;
+  // Resting stones within an island member's reach: the island's obstacles (below).
+  struct ObstacleClaim {
+    std::size_t stone, island, member;
+  };
+  std::vector<ObstacleClaim> claims;
   for (std::size_t p = 0; p < pairs.size(); ++p) {
     const auto& pair = pairs[p];
     // i is awake; j is the other (awake with a larger index, or resting).
@@ -403,9 +408,21 @@ World::Interaction World::next_interaction(double t_s, long work_limit) {
     const LensPairContact c = lens_pair_distance(body_at(i).lens(), lens_pose(hi.state),
                                                  body_at(j).lens(), lens_pose(hj.state));
     ++counters_.pair_gap_checks;
+    if (ri.island && hj.mode == StoneMode::resting) {
+      // A resting stone an island member can reach within the pass (its motion over the pass at
+      // the point-speed bound, twice its jump, the join margin) is the island's obstacle: kept
+      // out of, not moved, woken only when the island acts on it (advance_island). Farther ones
+      // bound the pass as before (first_order below: beyond the pass).
+      const double within_m = kJoinGapM + 2.0 * jump_bound(i) + point_speed_bound(i, dt) * dt;
+      if (c.gap_m <= within_m) {
+        claims.push_back(ObstacleClaim{j, *ri.island, i});
+        continue;
+      }
+    }
     // A stone an island or the fallback moves may jump within the pass (jump_bound): it joins
     // the stones within twice its jump (and the join margin), which the island then keeps
-    // (form_island), and the steps below keep that far from the others.
+    // (form_island), and the steps below keep that far from the others. (An island's resting
+    // neighbours are its obstacles instead, above.)
     const bool impulsive =
         hi.mode == StoneMode::nonsmooth_contact || hj.mode == StoneMode::nonsmooth_contact;
     const double reach = jump_bound(i) + (is_awake(j) ? jump_bound(j) : 0.0);
@@ -448,6 +465,30 @@ World::Interaction World::next_interaction(double t_s, long work_limit) {
     if (step < std::numeric_limits<double>::infinity()) {
       consider(time_ + step, Interaction::Kind::none, 0, 0, nullptr);
     }
+  }
+  // An obstacle belongs to one island: a resting stone that two islands can reach joins them
+  // (either may wake it; the other would go on keeping out of where it was).
+  const auto by_stone = [](const ObstacleClaim& x, const ObstacleClaim& y) {
+    return x.stone != y.stone ? x.stone < y.stone : x.island < y.island;
+  };
+  std::sort(claims.begin(), claims.end(), by_stone);
+  for (std::size_t k = 1; k < claims.size(); ++k) {
+    if (claims[k].stone == claims[k - 1].stone && claims[k].island != claims[k - 1].island)
+      consider(time_, Interaction::Kind::join, claims[k - 1].member, claims[k].member, nullptr);
+  }
+  // Each island's obstacles for this pass (none when no resting stone is within reach).
+  for (const std::unique_ptr<IslandRun>& run : islands_) {
+    std::vector<IslandObstacle> obstacles;
+    run->obstacles.clear();
+    for (std::size_t k = 0; k < claims.size(); ++k) {
+      if (claims[k].island != run->key) continue;
+      if (k > 0 && claims[k - 1].stone == claims[k].stone && claims[k - 1].island == run->key)
+        continue;  // claimed by two members
+      const std::size_t j = claims[k].stone;
+      run->obstacles.push_back(stones_.id(j));
+      obstacles.push_back(IslandObstacle{body_at(j).lens(), stones_.hot(j).state});
+    }
+    run->island.set_obstacles(std::move(obstacles));
   }
   return next;
 }
@@ -564,8 +605,9 @@ void World::form_island(const std::vector<std::size_t>& seeds,
       IslandRun{next_island_key_++,
                 NonsmoothIsland(std::move(bodies), config_.board_material, config_.table_material,
                                 config_.stone_material, t_s, options),
-                ids, std::vector<char>(members.size(), 1), NonsmoothCounters{}});
+                ids, std::vector<char>(members.size(), 1), NonsmoothCounters{}, {}, {}});
   ++counters_.islands_formed;
+  counters_.largest_island = std::max(counters_.largest_island, static_cast<long>(members.size()));
   for (std::size_t k = 0; k < members.size(); ++k) {
     const std::size_t i = members[k];
     StoneHot& h = stones_.hot(i);
@@ -610,6 +652,22 @@ void World::advance_islands(double& t_s, long work_limit) {
                                   return std::find(r->in.begin(), r->in.end(), 1) == r->in.end();
                                 }),
                  islands_.end());
+  // Islands that woke obstacles: formed anew with them, at the lattice time where they stopped
+  // (by key order; an obstacle belongs to one island, so these are distinct stones).
+  std::vector<std::vector<std::size_t>> redo;
+  for (const std::unique_ptr<IslandRun>& run : islands_) {
+    if (run->woken.empty()) continue;
+    std::vector<std::size_t> seeds;
+    for (std::size_t m = 0; m < run->members.size() && seeds.empty(); ++m) {
+      if (run->in[m]) seeds.push_back(index_of(run->members[m]));
+    }
+    seeds.insert(seeds.end(), run->woken.begin(), run->woken.end());
+    run->woken.clear();
+    redo.push_back(std::move(seeds));
+  }
+  for (const std::vector<std::size_t>& seeds : redo) {
+    form_island(seeds, {}, stones_.hot(seeds.front()).state_time_s);
+  }
 }
 
 double World::advance_island(IslandRun& run, double t_s, long work_limit) {
@@ -645,6 +703,14 @@ double World::advance_island(IslandRun& run, double t_s, long work_limit) {
           come_to_rest(i, s, o.time_s, WorldEventDetail::settle);
           break;
       }
+    }
+    if (!o.woken.empty()) {
+      // It acted on resting stones: they wake, and the island is formed anew with them where it
+      // is (advance_islands), to redo that sub-step; the pass ends here, so the other stones'
+      // pair searches see them awake in the next pass.
+      for (const std::size_t k : o.woken) run.woken.push_back(index_of(run.obstacles[k]));
+      counters_.obstacle_wakes += static_cast<long>(o.woken.size());
+      return o.time_s;
     }
     if (!o.left.empty() || o.finished || !(o.time_s < t_s) || counters_.work() >= work_limit)
       return o.time_s;

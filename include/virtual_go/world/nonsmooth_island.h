@@ -58,6 +58,13 @@
 // kept: no handed-out state overlaps (board and table gap >= -1e-12 m, pair gap >= -1e-12 m), no
 // energy is created, every impulse stays in Coulomb's cone.
 //
+// Obstacles (set_obstacles, IslandObstacle): resting stones near the island, kept out of as the
+// board is (step 2 moves only the member, step 3 gives the member a plastic one-body impulse on
+// the obstacle's fixed surface; step 3's impacts between members leave them out) and never moved;
+// they are not members (no energy, no rest, no events). A committed sub-step that acts on one
+// beyond round-off is not committed: the island stops at the lattice point before it and names
+// the obstacle (IslandOutcome::woken), to be formed anew with it as a member.
+//
 // The sub-steps lie on the lattice t0 + k h, so the motion does not depend on when it is sampled.
 // A sample at t between lattice points k and k+1 is a partial sub-step from k (its poses) whose
 // kinetic energy is scaled so that the island's energy equals that of lattice state k+1 (or, when
@@ -151,6 +158,9 @@ struct NonsmoothCounters {
   double deepest_overlap_m = 0.0;  // deepest overlap a free sub-step produced (corrected), m
   double largest_energy_excess_j = 0.0;  // energy above the previous lattice state's left after
                                          // the guard (0 by construction; measured), J
+  long obstacle_impulses = 0;    // of `impulses`, those against an obstacle (then it wakes)
+  long obstacle_projections = 0; // of `projections`, those out of an obstacle
+  long obstacle_wakes = 0;       // obstacles woken (IslandOutcome::woken), counted once each
 };
 
 // One member: its lens against the board (BoardDistance carries the lens geometry), its mass
@@ -162,6 +172,19 @@ struct IslandBody {
   // false: there is no board and no table (a world whose board is switched off); the member
   // meets only the other members, and `separated` needs no board search.
   bool board_enabled = true;
+};
+
+// A resting stone near the island (set_obstacles): the island keeps its members out of it as it
+// keeps them out of the board, and never moves it. A correction out of it moves only the member;
+// an impulse on it is the member's one-body impact on a fixed surface (plastic, Coulomb friction:
+// resolve_impact), so it can only take energy away and nothing overlaps. When a committed sub-step
+// acts on it beyond round-off (an impulse: an approach faster than the solver's approach
+// tolerance, 1e-12 m/s; a correction deeper than the gap tolerance, 1e-12 m) the island does not
+// commit that sub-step: it stops at the lattice point before it and names the obstacle
+// (IslandOutcome::woken), so that the World can redo the sub-step with it as a member.
+struct IslandObstacle {
+  LensGeometry lens;
+  RigidBodyState state;  // at rest: its pose is all that is used
 };
 
 struct IslandMemberEnd {
@@ -178,6 +201,10 @@ struct IslandOutcome {
   std::vector<RigidBodyState> states;
   std::vector<IslandMemberEnd> left;  // the members that left at time_s, and how
   bool finished = false;              // no member is left: only time_s may be asked again
+  // Obstacles (indices in set_obstacles' list) that the sub-step from time_s (a lattice point)
+  // acted on: it was not committed. The island is to be formed anew at time_s from `states` with
+  // them as members (deterministic: the same sub-step, redone); it is not advanced further.
+  std::vector<std::size_t> woken;
 };
 
 class NonsmoothIsland {
@@ -198,6 +225,11 @@ class NonsmoothIsland {
   // Throws InvalidArgument for a non-finite or earlier time, or a negative budget.
   IslandOutcome advance(double t_end_s, long max_steps = std::numeric_limits<long>::max());
 
+  // The obstacles from now on (replacing the previous ones): resting stones a member may reach
+  // (the World's pair search gives every resting stone within a member's reach over its pass).
+  void set_obstacles(std::vector<IslandObstacle> obstacles);
+  std::size_t obstacle_count() const { return obstacles_.size(); }
+
   std::size_t size() const { return members_.size(); }
   bool active(std::size_t member) const { return lattice_.active[member] != 0; }
   double start_time() const { return t0_; }
@@ -217,12 +249,14 @@ class NonsmoothIsland {
     int board = 0;            // board or table contacts within the margin
     BoardContact contact[2];  // those contacts
     int stones = 0;           // contacts with other members within the margin
+    int obstacles = 0;        // contacts with obstacles within the margin
     int near = 0;             // other members within kKeepMarginFactor margins (stay in)
     bool loaded = false;      // a correction or an impulse acted on it
   };
   struct PairContact {
     std::size_t a = 0, b = 0;
     Eigen::Vector3d point_world, normal_world;  // normal from a to b
+    bool obstacle = false;                      // b is an obstacle's index, not a member's
   };
   // A free island's totals at time_s, from which they follow in closed form (only the members'
   // forces on each other act): P(t) = P + M g tau, L_O(t) = L_O + M (X tau + V tau^2 / 2) x g,
@@ -238,6 +272,7 @@ class NonsmoothIsland {
     std::vector<RigidBodyState> states;
     std::vector<MemberContacts> contacts;
     std::optional<FreeAnchor> anchor;  // the step was free of the board: the anchor it kept
+    std::vector<std::size_t> woken;    // committed: the obstacles it acted on (then not kept)
   };
   // A lattice point: the states handed out there, who is still in, the calm counts.
   struct Lattice {
@@ -251,6 +286,7 @@ class NonsmoothIsland {
     double ceiling_j = 0.0;
     std::optional<FreeAnchor> anchor;  // free since the anchor's time, members unchanged
     std::vector<IslandMemberEnd> left;
+    std::vector<std::size_t> woken;  // the sub-step to here acted on these obstacles: redo
   };
 
   // One sub-step of h_s from `from`, which is at lattice(steps_).
@@ -299,6 +335,17 @@ class NonsmoothIsland {
                                 const Eigen::Vector3d& before) const;
   double lattice(long k) const { return t0_ + static_cast<double>(k) * options_.step_s; }
   IslandOutcome outcome(double t) const;
+  // The lattice point before a sub-step that acted on obstacles: where the World redoes it.
+  IslandOutcome wake_outcome(const std::vector<std::size_t>& woken);
+  // lens_pair_distance of member a at pose pa and obstacle o (memo as pair_distance).
+  const LensPairContact& obstacle_distance(std::size_t a, const LensPose& pa, std::size_t o,
+                                           bool commit);
+  // Corrections out of the obstacles (step 2): only the member moves.
+  bool project_obstacles(std::vector<RigidBodyState>& s, std::vector<MemberContacts>& mc,
+                         bool commit);
+  // Plastic impulses at the member-obstacle contacts that approach (step 3): true if any.
+  bool obstacle_impulses(std::vector<RigidBodyState>& s, std::vector<MemberContacts>& mc,
+                         const std::vector<PairContact>& pairs, bool commit);
 
   std::vector<Member> members_;
   ContactMaterial board_plastic_, table_plastic_, stone_plastic_, stone_material_;
@@ -316,6 +363,9 @@ class NonsmoothIsland {
     LensPairContact contact;
   };
   std::vector<PairMemo> pair_memo_;  // members_.size()^2, by a * n + b
+  std::vector<IslandObstacle> obstacles_;
+  std::vector<PairMemo> obstacle_memo_;  // members_.size() * obstacles_.size(), by a * m + o
+  std::vector<char> obstacle_acted_;     // per obstacle, in the sub-step being computed
 };
 
 }  // namespace virtual_go

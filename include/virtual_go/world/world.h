@@ -26,7 +26,11 @@
 // (4) resolve there: a pair impact (Stronge, the config's stone_material; both stones get an
 // `impact` naming the other; a resting stone hit gets a `wake` first), or, for a sustained contact
 // (a resting or touching partner, a rebound below the Zeno speed, a stone in contact within 1 nm of
-// another), one NonsmoothIsland for the stones involved and the islands they are in. Members leave
+// another), one NonsmoothIsland for the stones involved and the islands they are in. A resting
+// stone within an island member's reach over the pass does not join: it is the island's fixed
+// obstacle (kept out of, never moved) and wakes only when the island's solve acts on it; the
+// island then stops at the lattice point before that sub-step and is formed anew there with it
+// (the pass ends there, as where a member leaves). Members leave
 // the island as the single-stone fallback's stone does (flight, plane contact, rest); an island
 // that rests, rests whole. Not exact yet: a flight that begins inside a step (a lift-off, a
 // separation from an island) is searched against other stones from the end of that step; a command
@@ -263,6 +267,8 @@ class World {
     std::vector<StoneId> members;
     std::vector<char> in;
     NonsmoothCounters seen;
+    std::vector<StoneId> obstacles;  // the resting stones it keeps out of (next_interaction)
+    std::vector<std::size_t> woken;  // stone indices its last advance woke (advance_islands)
   };
   // Stage 3: every awake stone to t_s by its own model (the per-stone advance with the work
   // limit); false when the budget stopped it first (time() is then the stop time).
@@ -282,7 +288,8 @@ class World {
   // time() by less than a pass; its next advance waits for the world.)
   // Each island gets at least one sub-step; one that stops at the work limit ends the pass there.
   void advance_islands(double& t_s, long work_limit);
-  // To t_s, the first lattice time where members leave, or where the work limit stopped it
+  // To t_s, the first lattice time where members leave, where a sub-step acted on an obstacle
+  // (run.woken: the island is formed anew there with it), or where the work limit stopped it
   // (returned); members that leave are left there.
   double advance_island(IslandRun& run, double t_s, long work_limit);
   // Each member but `except` goes on in its own single-stone fallback.

@@ -24,6 +24,8 @@ struct WorldCounters {
   long pair_candidates = 0;       // pairs whose bounds met (each then gets a pair test)
   long pair_impacts = 0;          // stone-stone impacts resolved (of `impacts`)
   long islands_formed = 0;        // stone-stone islands formed (NonsmoothIsland)
+  long obstacle_wakes = 0;        // resting stones an island woke by acting on them (obstacles)
+  long largest_island = 0;        // the most stones one island was formed with
   long stages = 0;                // pipeline passes of advance_to (world.h)
   // Stones advance_to looked at: the awake ones (flight or contact), one visit each per call. A
   // resting stone is never visited, so a resting board adds nothing here (issue 15: O(1) in
