@@ -75,8 +75,8 @@ TEST_P(WorldFullBoardThrow, WakesWhatItPushesNeverGainsEnergyNeverOverlapsAndRes
   std::vector<double> e(n);
   double total = 0.0;
   for (std::size_t i = 0; i < n; ++i) total += (e[i] = energy_now(i));
-  const double drop_j = facts.back().mass_kg *
-                        (0.5 * th.velocity_m_s.squaredNorm() + kG * (th.height_m + 0.01));
+  const double drop_j =
+      facts.back().mass_kg * (0.5 * th.velocity_m_s.squaredNorm() + kG * (th.height_m + 0.01));
   double lowest = total, worst_rise = 0.0;
   double worst_gap = std::numeric_limits<double>::infinity(), worst_board = worst_gap;
   std::vector<vg::RigidBodyState> previous;
@@ -106,9 +106,8 @@ TEST_P(WorldFullBoardThrow, WakesWhatItPushesNeverGainsEnergyNeverOverlapsAndRes
       // sides are not checked here).
       const bool over = std::abs(s.position_world.x()) < 0.5 * c.board.size_x_m &&
                         std::abs(s.position_world.y()) < 0.5 * c.board.size_y_m;
-      worst_board =
-          std::min(worst_board, lens.x.z() - lens.reach(Vector3d::UnitZ()) -
-                                    (over ? c.board.top_z_m() : c.board.table_z_m()));
+      worst_board = std::min(worst_board, lens.x.z() - lens.reach(Vector3d::UnitZ()) -
+                                              (over ? c.board.top_z_m() : c.board.table_z_m()));
       for (std::size_t j = 0; j < n; ++j) {
         if (j == i || (j < i && changed[j])) continue;  // each pair once
         const vg::RigidBodyState& sj = world.state(j);
@@ -157,17 +156,18 @@ TEST_P(WorldFullBoardThrow, WakesWhatItPushesNeverGainsEnergyNeverOverlapsAndRes
   }
 }
 
-// Bounds on the stones woken: measured (see the run's printout) with room, and far below the
-// 361 a board-wide island wakes.
+// Bounds on the stones woken: measured (see the run's printout: 4, 14, 10 and 59 woken) with
+// room, and far below the 361 a board-wide island wakes. Two heavier throws were measured on
+// the obstacle rule's branch and are left out for their run time (about 95 s each here): H8
+// across the rows at (0.2, -0.9, -0.4) m/s woke 69 (largest island 70, 59 s CPU) and K10 from
+// 3 cm at (1.2, 0.9, -1.3) m/s woke 66 (largest island 67, 59 s CPU); both rested exactly with no
+// energy rise and no overlap.
 INSTANTIATE_TEST_SUITE_P(
     Throws, WorldFullBoardThrow,
-    ::testing::Values(
-        Throw{"Q16_oblique_1m_s", "Q16", 0.02, Vector3d(0.6, 0.0, -0.8), 361},
-        Throw{"D4_sideways_1m_s", "D4", 0.02, Vector3d(1.0, 0.0, 0.0), 361},
-        Throw{"K10_dropped", "K10", 0.02, Vector3d::Zero(), 361},
-        Throw{"H8_across_rows", "H8", 0.02, Vector3d(0.2, -0.9, -0.4), 361},
-        Throw{"K10_fast_diagonal", "K10", 0.03, Vector3d(1.2, 0.9, -1.3), 361},
-        Throw{"A10_edge_inward", "A10", 0.02, Vector3d(0.7, 0.1, -0.7), 361}),
+    ::testing::Values(Throw{"Q16_oblique_1m_s", "Q16", 0.02, Vector3d(0.6, 0.0, -0.8), 12},
+                      Throw{"D4_sideways_1m_s", "D4", 0.02, Vector3d(1.0, 0.0, 0.0), 30},
+                      Throw{"K10_dropped", "K10", 0.02, Vector3d::Zero(), 25},
+                      Throw{"A10_edge_inward", "A10", 0.02, Vector3d(0.7, 0.1, -0.7), 120}),
     [](const ::testing::TestParamInfo<Throw>& info) { return std::string(info.param.name); });
 
 }  // namespace
