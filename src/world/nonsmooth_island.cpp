@@ -70,8 +70,7 @@ LensPairContact pair_contact(const LensGeometry& a, const LensPose& pa, const Le
                              const LensPose& pb, const LensPairContact& best) {
   const Eigen::Vector3d centre_line = pb.center_world - pa.center_world;
   if (!(centre_line.norm() > 0.0)) return best;
-  const LensPairContact along =
-      lens_pair_contact_along(a, pa, b, pb, centre_line.normalized());
+  const LensPairContact along = lens_pair_contact_along(a, pa, b, pb, centre_line.normalized());
   const bool as_good = along.gap_m >= best.gap_m - kGapToleranceM;
   const bool cheap = best.gap_m < 0.0 && along.gap_m >= kCentreLineCost * best.gap_m;
   return as_good || cheap ? along : best;
@@ -500,15 +499,9 @@ bool NonsmoothIsland::project_obstacles(std::vector<RigidBodyState>& s,
   for (std::size_t a = 0; a < s.size(); ++a) {
     if (!lattice_.active[a]) continue;
     for (std::size_t o = 0; o < obstacles_.size(); ++o) {
-      const double reach = members_[a].board.lens().half_width() + obstacles_[o].lens.half_width();
-      if ((obstacles_[o].state.position_world - s[a].position_world).squaredNorm() >
-          reach * reach) {
-        continue;
-      }
-      const LensPose pa = lens_pose(s[a]);
-      const LensPairContact c = pair_contact(members_[a].board.lens(), pa, obstacles_[o].lens,
-                                             lens_pose(obstacles_[o].state),
-                                             obstacle_distance(a, pa, o, commit));
+      const std::optional<LensPairContact> found = obstacle_contact(a, s[a], o, 0.0, commit);
+      if (!found) continue;
+      const LensPairContact& c = *found;
       if (c.gap_m >= 0.0) continue;
       if (c.gap_m < -kGapToleranceM) obstacle_acted_[o] = 1;
       s[a].position_world -= (kCorrectionSlackM - c.gap_m) * c.normal_world;
@@ -532,8 +525,7 @@ bool NonsmoothIsland::obstacle_impulses(std::vector<RigidBodyState>& s,
   for (const PairContact& p : pairs) {
     if (!p.obstacle) continue;
     const MotionModel& model = members_[p.a].setup.model;
-    const double u_n =
-        -p.normal_world.dot(point_velocity_world(model, s[p.a], p.point_world));
+    const double u_n = -p.normal_world.dot(point_velocity_world(model, s[p.a], p.point_world));
     if (!(u_n < -kApproachToleranceMps)) continue;
     s[p.a] = resolve_impact(model, s[p.a], p.point_world, -p.normal_world, stone_plastic_,
                             members_[p.a].setup.gravity_world)
@@ -553,6 +545,19 @@ void NonsmoothIsland::set_obstacles(std::vector<IslandObstacle> obstacles) {
   for (IslandObstacle& o : obstacles) o.state = o.state.validated();
   obstacles_ = std::move(obstacles);
   obstacle_memo_.assign(members_.size() * obstacles_.size(), PairMemo{});
+}
+
+std::optional<LensPairContact> NonsmoothIsland::obstacle_contact(std::size_t a,
+                                                                 const RigidBodyState& s_a,
+                                                                 std::size_t o, double margin_m,
+                                                                 bool commit) {
+  const double reach =
+      members_[a].board.lens().half_width() + obstacles_[o].lens.half_width() + margin_m;
+  if ((obstacles_[o].state.position_world - s_a.position_world).squaredNorm() > reach * reach)
+    return std::nullopt;
+  const LensPose pa = lens_pose(s_a);
+  return pair_contact(members_[a].board.lens(), pa, obstacles_[o].lens,
+                      lens_pose(obstacles_[o].state), obstacle_distance(a, pa, o, commit));
 }
 
 const LensPairContact& NonsmoothIsland::obstacle_distance(std::size_t a, const LensPose& pa,
@@ -638,16 +643,10 @@ bool NonsmoothIsland::gather(const std::vector<RigidBodyState>& s, std::vector<M
     mc[a].obstacles = 0;
     if (!lattice_.active[a]) continue;
     for (std::size_t o = 0; o < obstacles_.size(); ++o) {
-      const double reach = members_[a].board.lens().half_width() +
-                           obstacles_[o].lens.half_width() + options_.contact_margin_m;
-      if ((obstacles_[o].state.position_world - s[a].position_world).squaredNorm() >
-          reach * reach) {
-        continue;
-      }
-      const LensPose pa = lens_pose(s[a]);
-      const LensPairContact c = pair_contact(members_[a].board.lens(), pa, obstacles_[o].lens,
-                                             lens_pose(obstacles_[o].state),
-                                             obstacle_distance(a, pa, o, commit));
+      const std::optional<LensPairContact> found =
+          obstacle_contact(a, s[a], o, options_.contact_margin_m, commit);
+      if (!found) continue;
+      const LensPairContact& c = *found;
       if (c.gap_m < -kGapToleranceM) clear = false;
       if (c.gap_m > options_.contact_margin_m) continue;
       ++mc[a].obstacles;

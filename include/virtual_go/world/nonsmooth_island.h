@@ -158,9 +158,9 @@ struct NonsmoothCounters {
   double deepest_overlap_m = 0.0;  // deepest overlap a free sub-step produced (corrected), m
   double largest_energy_excess_j = 0.0;  // energy above the previous lattice state's left after
                                          // the guard (0 by construction; measured), J
-  long obstacle_impulses = 0;    // of `impulses`, those against an obstacle (then it wakes)
-  long obstacle_projections = 0; // of `projections`, those out of an obstacle
-  long obstacle_wakes = 0;       // obstacles woken (IslandOutcome::woken), counted once each
+  long obstacle_impulses = 0;            // of `impulses`, those against an obstacle (then it wakes)
+  long obstacle_projections = 0;         // of `projections`, those out of an obstacle
+  long obstacle_wakes = 0;  // obstacles woken (IslandOutcome::woken), counted once each
 };
 
 // One member: its lens against the board (BoardDistance carries the lens geometry), its mass
@@ -338,6 +338,10 @@ class NonsmoothIsland {
   // The lattice point before a sub-step that acted on obstacles: where the World redoes it.
   IslandOutcome wake_outcome(const std::vector<std::size_t>& woken);
   // lens_pair_distance of member a at pose pa and obstacle o (memo as pair_distance).
+  // Member a (state s_a) against obstacle o: nothing when their centres are farther apart than
+  // the two half-widths and margin_m, else their contact (obstacle_distance).
+  std::optional<LensPairContact> obstacle_contact(std::size_t a, const RigidBodyState& s_a,
+                                                  std::size_t o, double margin_m, bool commit);
   const LensPairContact& obstacle_distance(std::size_t a, const LensPose& pa, std::size_t o,
                                            bool commit);
   // Corrections out of the obstacles (step 2): only the member moves.
