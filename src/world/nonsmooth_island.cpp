@@ -657,6 +657,27 @@ bool NonsmoothIsland::gather(const std::vector<RigidBodyState>& s, std::vector<M
   return clear;
 }
 
+bool NonsmoothIsland::board_impulses(std::size_t i, std::vector<RigidBodyState>& s,
+                                     std::vector<MemberContacts>& mc, bool commit) {
+  const MemberContacts& m = mc[i];
+  const MotionModel& model = members_[i].setup.model;
+  bool acted = false;
+  for (int k = 0; k < m.board; ++k) {
+    const BoardContact& c = m.contact[k];
+    const double u_n =
+        c.lens.normal_world.dot(point_velocity_world(model, s[i], c.lens.point_world));
+    if (!(u_n < -kApproachToleranceMps)) continue;
+    s[i] = resolve_impact(model, s[i], c.lens.point_world, c.lens.normal_world,
+                          c.on_table() ? table_plastic_ : board_plastic_,
+                          members_[i].setup.gravity_world)
+               .state;
+    acted = true;
+    mc[i].loaded = true;
+    if (commit) ++counters_.impulses;
+  }
+  return acted;
+}
+
 NonsmoothIsland::Step NonsmoothIsland::sub_step(const Lattice& lattice_from, double h_s,
                                                 bool commit) {
   const std::vector<RigidBodyState>& from = lattice_from.states;
@@ -699,21 +720,7 @@ NonsmoothIsland::Step NonsmoothIsland::sub_step(const Lattice& lattice_from, dou
   for (; !hold && velocity_sweeps < options_.max_sweeps; ++velocity_sweeps) {
     bool acted = false;
     for (std::size_t i = 0; i < n; ++i) {
-      const MemberContacts& m = out.contacts[i];
-      const MotionModel& model = members_[i].setup.model;
-      for (int k = 0; k < m.board; ++k) {
-        const BoardContact& c = m.contact[k];
-        const double u_n =
-            c.lens.normal_world.dot(point_velocity_world(model, s[i], c.lens.point_world));
-        if (!(u_n < -kApproachToleranceMps)) continue;
-        s[i] = resolve_impact(model, s[i], c.lens.point_world, c.lens.normal_world,
-                              c.on_table() ? table_plastic_ : board_plastic_,
-                              members_[i].setup.gravity_world)
-                   .state;
-        acted = true;
-        out.contacts[i].loaded = true;
-        if (commit) ++counters_.impulses;
-      }
+      if (board_impulses(i, s, out.contacts, commit)) acted = true;
     }
     if (obstacle_impulses(s, out.contacts, pairs, commit)) acted = true;
     for (const PairContact& p : pairs) {
@@ -735,8 +742,13 @@ NonsmoothIsland::Step NonsmoothIsland::sub_step(const Lattice& lattice_from, dou
       if (held_a != held_b) {
         // The board holds the lower stone: the upper one meets it as a surface moving with the
         // lower's contact point (the one-body impact in that frame: only K of the upper stone
-        // and the relative velocity enter), and the lower stone is not moved. The energy change
-        // is the relative one plus P . u_lower, ~0 for a supported stone; the guard covers it.
+        // and the relative velocity enter). The lower stone takes the opposite impulse -P at the
+        // same point (momentum between the stones is kept), and at once its board contacts'
+        // plastic impulses (the board's part: the normal, and the tangential within mu N), so
+        // the board takes only what its contacts can carry and the rest stays in the stones:
+        // on a frictionless board the horizontal momentum is kept to round-off. Along the
+        // board's normal the lower stone is then where it was (a stone on a stone converges at
+        // once); what the board cannot carry the next sweep meets. The guard covers the energy.
         const std::size_t held = held_a ? p.a : p.b, moving = held_a ? p.b : p.a;
         const Eigen::Vector3d n = held_a ? p.normal_world : Eigen::Vector3d(-p.normal_world);
         RigidBodyState relative = s[moving];
@@ -747,6 +759,12 @@ NonsmoothIsland::Step NonsmoothIsland::sub_step(const Lattice& lattice_from, dou
                            members_[moving].setup.gravity_world);
         s[moving].velocity_world += impact.state.velocity_world - relative.velocity_world;
         s[moving].angular_momentum_world = impact.state.angular_momentum_world;
+        const Eigen::Vector3d& impulse_world = impact.impulse_world;  // on the moving stone
+        s[held].velocity_world -=
+            impulse_world / members_[held].setup.model.mass_properties().mass();
+        s[held].angular_momentum_world -=
+            (p.point_world - s[held].position_world).cross(impulse_world);
+        board_impulses(held, s, out.contacts, commit);
       } else {
         const PairImpact impact = resolve_pair_impact(ma, s[p.a], mb, s[p.b], p.point_world,
                                                       p.normal_world, stone_plastic_);
