@@ -70,7 +70,8 @@ struct Cradle {
   // air_z_m: the row's centre height in the air (the board is switched off there; at 0 the row
   // stands where the board's box would be).
   Cradle(int n, Striker how, double stone_restitution, double stone_friction, double board_friction,
-         double air_z_m = 0.3, bool island_impacts = vg::NonsmoothContactOptions{}.pair_impacts)
+         double air_z_m = 0.3, bool island_impacts = vg::NonsmoothContactOptions{}.pair_impacts,
+         double step_s = vg::NonsmoothContactOptions{}.step_s)
       : world([&] {
           vg::WorldConfig c = config(0.5, board_friction, board_friction > 0 ? kRollingM : 0.0,
                                      board_friction > 0 ? 15e-6 : 0.0);
@@ -81,6 +82,7 @@ struct Cradle {
           c.stone_material.rolling_resistance_m = 0.0;
           c.stone_material.spinning_friction_m = 0.0;
           c.options.nonsmooth.pair_impacts = island_impacts;
+          c.options.nonsmooth.step_s = step_s;
           return vg::World(c, std::vector<vg::RigidBodyState>{}, 0.0);
         }()) {
     // On the board: flat, lowest points on it, centres 2a apart along x (rim touches rim, as
@@ -435,6 +437,7 @@ RealBoardRun run_real_board() {
   const double scale = std::abs(previous) + 4 * mass() * kG * kA;
   const std::size_t n = cr.world.stone_count();
   std::vector<double> tilt(n, 0.0), tilt_before(n, 0.0);
+  std::vector<int> plane_samples(n, 0);  // a peak needs two samples before it in plane contact
   const double dt = 1e-3;
   for (int k = 1; k * dt <= 5.0 + 1e-12; ++k) {
     cr.world.advance_to(k * dt, cr.events);
@@ -451,7 +454,7 @@ RealBoardRun run_real_board() {
       const vg::RigidBodyState& s = cr.world.state(last);
       const double now =
           std::acos(std::min(1.0, (s.orientation.normalized() * Vector3d::UnitZ()).z()));
-      if (k > 2 && tilt[last] > tilt_before[last] && tilt[last] >= now) {
+      if (plane_samples[last] >= 2 && tilt[last] > tilt_before[last] && tilt[last] >= now) {
         r.peak_at = (k - 1) * dt;
         r.peak_tilt = tilt[last];
         const StoneFacts f = facts_of(cr.world, last);
@@ -459,6 +462,7 @@ RealBoardRun run_real_board() {
             M_PI * std::sqrt((f.moments_body.x() + f.mass_kg * kC * kC) / (f.mass_kg * kG * kD));
       }
       tilt_before[last] = tilt[last];
+      ++plane_samples[last];
       tilt[last] = now;
     }
     if (cr.world.all_resting()) {
@@ -479,6 +483,122 @@ RealBoardRun run_real_board() {
 const RealBoardRun& real_board_run() {
   static const RealBoardRun r = run_real_board();
   return r;
+}
+
+// Rest at finer sub-steps h of the islands (docs/physics.md, "Convergence in h"): a pile at rest
+// in the limit must rest at every h, at about the same time. Before the islands gave friction to
+// contacts that no longer approach, a resting pile slid at ~0.2 g h: each sub-step's impulses left
+// tangential slip at contacts pressed earlier in the sweep, above the 1e-5 m/s rest threshold
+// below h ~ 5e-5 s, so it never rested (the cradle below, the pile at 2.5e-5 s: 3.3e-5 to 4.6e-5
+// m/s, both stones sliding on a board with mu 0.3, 0.1 mm over 3 s). Checked for each run: the
+// energy never rises (sampled every 1 ms); at rest every velocity is exactly 0 and the poses stay
+// bitwise frozen.
+struct RestRun {
+  double rest_at = -1.0, worst_rise = 0.0;
+  long island_steps = 0;
+  bool frozen = false;
+};
+RestRun run_to_rest(vg::World& world, std::vector<vg::WorldEvent>& events, double t_max_s) {
+  RestRun r;
+  auto energy = [&] {
+    double e = 0.0;
+    for (std::size_t i = 0; i < world.stone_count(); ++i)
+      e += energy_of(facts_of(world, i), world.state(i), kGravity);
+    return e;
+  };
+  double previous = energy();
+  const double scale = std::abs(previous) + 4 * mass() * kG * kA;
+  const double dt = 1e-3;
+  int k = 1;
+  for (; k * dt <= t_max_s + 1e-12; ++k) {
+    world.advance_to(k * dt, events);
+    const double e = energy();
+    r.worst_rise = std::max(r.worst_rise, (e - previous) / scale);
+    previous = std::min(previous, e);
+    if (world.all_resting()) {
+      r.rest_at = k * dt;
+      break;
+    }
+  }
+  r.island_steps = world.counters().nonsmooth_steps;
+  if (r.rest_at < 0.0) return r;
+  std::vector<vg::RigidBodyState> at_rest;
+  r.frozen = true;
+  for (std::size_t i = 0; i < world.stone_count(); ++i) {
+    at_rest.push_back(world.state(i));
+    r.frozen = r.frozen && world.state(i).velocity_world == Vector3d::Zero() &&
+               world.state(i).angular_momentum_world == Vector3d::Zero();
+  }
+  world.advance_to(r.rest_at + 0.1, events);
+  for (std::size_t i = 0; i < world.stone_count(); ++i) {
+    r.frozen = r.frozen && world.state(i).position_world == at_rest[i].position_world &&
+               world.state(i).orientation.coeffs() == at_rest[i].orientation.coeffs();
+  }
+  return r;
+}
+
+// The rest time at each h is within this of the one at the default h (1e-4 s).
+void expect_rest_like_the_default(const char* name, const std::vector<RestRun>& runs,
+                                  const std::vector<double>& steps) {
+  for (std::size_t j = 0; j < runs.size(); ++j) {
+    std::printf(
+        "[ measured ] %s, h = %.1e s: all rest at %.3f s (%ld island sub-steps); largest energy "
+        "rise %.3g of E; frozen at rest %d\n",
+        name, steps[j], runs[j].rest_at, runs[j].island_steps, runs[j].worst_rise,
+        runs[j].frozen);
+    EXPECT_GT(runs[j].rest_at, 0.0) << "h = " << steps[j];
+    EXPECT_NEAR(runs[j].rest_at, runs[0].rest_at, 0.02 * runs[0].rest_at + 2e-3)
+        << "h = " << steps[j];
+    // The energy's own round-off (the pile's 4.0e-17 at every h comes from the free flight
+    // before it lands: the same at every h).
+    EXPECT_LE(runs[j].worst_rise, 1e-15) << "h = " << steps[j];
+    EXPECT_TRUE(runs[j].frozen) << "h = " << steps[j];
+  }
+}
+
+TEST(WorldCradle, OnARealBoardTheRowRestsAtFinerIslandSteps) {
+  const std::vector<double> steps = {1e-4, 5e-5, 2.5e-5};
+  ASSERT_EQ(steps[0], vg::NonsmoothContactOptions{}.step_s);
+  std::vector<RestRun> runs;
+  for (const double h : steps) {
+    Cradle cr(3, Striker::flying_over_the_board, 0.8, 0.3, 0.3, 0.3,
+              vg::NonsmoothContactOptions{}.pair_impacts, h);
+    runs.push_back(run_to_rest(cr.world, cr.events, 5.0));
+  }
+  expect_rest_like_the_default("real-board cradle", runs, steps);
+}
+
+TEST(WorldCradle, APileOfTwoRestsAtFinerIslandSteps) {
+  // A stone falling tilted 15 degrees onto the rim of a flat one comes to lean on it, its cap on
+  // the board: two stones, three loaded contacts (board-lower, board-upper, upper-lower), mu 0.3.
+  const std::vector<double> steps = {1e-4, 5e-5, 2.5e-5};
+  std::vector<RestRun> runs;
+  for (const double h : steps) {
+    vg::WorldConfig c = config(0.8, 0.3, kRollingM, 15e-6);
+    c.stone_contact = true;
+    c.stone_material.restitution = 0.8;
+    c.stone_material.friction = 0.3;
+    c.stone_material.rolling_resistance_m = 0.0;
+    c.stone_material.spinning_friction_m = 0.0;
+    c.options.nonsmooth.step_s = h;
+    vg::World world(c, std::vector<vg::RigidBodyState>{}, 0.0);
+    std::vector<vg::WorldEvent> events;
+    const double tilt = 15.0 * M_PI / 180;
+    world.add_stone(0, at(Vector3d(0, 0, kC), Eigen::Quaterniond::Identity()), 0.0, events);
+    // Its lowest point (on the bottom cap) 1 mm above the board, moving down and towards the
+    // flat stone, onto whose rim its raised side comes down.
+    world.add_stone(0,
+                    at(Vector3d(1.8 * kA, 0, kR - kD * std::cos(tilt) + 1e-3),
+                       Eigen::Quaterniond(Eigen::AngleAxisd(tilt, Vector3d::UnitY())),
+                       Vector3d(-0.02, 0, -0.05)),
+                    0.0, events);
+    runs.push_back(run_to_rest(world, events, 3.0));
+    // It does lean on the flat stone: its axis tilted, its centre within two radii.
+    const vg::RigidBodyState& u = world.state(1);
+    EXPECT_GT(std::acos((u.orientation.normalized() * Vector3d::UnitZ()).z()), 0.1);
+    EXPECT_LT((u.position_world - world.state(0).position_world).norm(), 2 * kA);
+  }
+  expect_rest_like_the_default("pile of two", runs, steps);
 }
 
 // Everything rests, and when the last stone moving rocks, when the Coulomb-damped pendulum

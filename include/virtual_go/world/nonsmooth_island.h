@@ -291,9 +291,12 @@ class NonsmoothIsland {
 
   // One sub-step of h_s from `from`, which is at lattice(steps_).
   Step sub_step(const Lattice& from, double h_s, bool commit);
-  // Step 3's plastic impulses of member i's board and table contacts that approach: true if any.
+  // Step 3's plastic impulses of member i's board and table contacts that approach, and the
+  // friction of those that no longer approach but slip, within mu times their normal impulse so
+  // far (accumulated, 2 per member, updated): true if any acted.
   bool board_impulses(std::size_t i, std::vector<RigidBodyState>& s,
-                      std::vector<MemberContacts>& mc, bool commit);
+                      std::vector<MemberContacts>& mc, std::vector<Eigen::Vector3d>& accumulated,
+                      bool commit);
   // Step 3's impacts between members (the rule for simultaneous contacts), on s.
   void resolve_pair_impacts(std::vector<RigidBodyState>& s, std::vector<MemberContacts>& mc,
                             const std::vector<PairContact>& pairs, bool free, bool commit);
