@@ -411,13 +411,16 @@ TEST(WorldCradle, OnTheBoardAnElasticFrictionlessRowIsTheAnalyticCradle) {
 // above it comes to rest in finite time, the energy never rising, nothing dipping into the board.
 // With the islands' pair impacts (the default) the last stone leaves the row sliding (0.057 m/s,
 // 3.45 rad/s, at 11.6 ms), and the board's friction tips it into rocking on its bottom cap, 7-9
-// degrees each way, rolling without slip: a pendulum whose only loss is the rolling resistance
+// degrees each way (6.1 degrees at its first observed peak since the held sweeps keep momentum),
+// rolling without slip: a pendulum whose only loss is the rolling resistance
 // l_r (the stone material's lengths are 0 here). Its couple l_r N ~ l_r m g against the cap's
 // restoring couple m g d sin(theta) (d = R - c, the centre of mass below the cap's centre) is
 // Coulomb damping: the amplitude falls by 2 l_r / d per half swing of
 // pi sqrt((I1 + m c^2) / (m g d)) (0.0650 s; peaks measured 0.0656 s apart at 9 degrees) and
-// sticks once within l_r / d of upright. Measured: rests at 1.095 s, the pendulum says 1.091 s.
-// With l_r = 5e-6 m (0.0528 degrees per half swing): 11.060 s, the pendulum 11.044 s; the same
+// sticks once within l_r / d of upright. Measured: rests at 0.917 s, the pendulum says 0.914 s
+// (1.095 and 1.091 s before the islands' held sweeps kept momentum and slipping contacts got
+// their friction). Earlier, with l_r = 5e-6 m (0.0528 degrees per half swing): 11.060 s, the
+// pendulum 11.044 s; the same
 // stone alone on the board from the same state rests 11.05 s after it (0: never, its energy
 // constant to 2e-17 J over 20 s), so the long rocking is the plane contact's physics, not the
 // island's. Without the pair impacts the row moved on as one plastic block and all rested within
@@ -623,8 +626,8 @@ TEST(WorldCradle, OnARealBoardTheRowComesToRest) {
 }
 
 // The run above never overlaps by more than the 1e-9 m. Measured: smallest pair gap
-// 0 m, all rest at 1.095 s (5 islands, 2130 island sub-steps, 1176 passes; with the islands'
-// impulses plastic, before pair_impacts was the default: -1.3e-19 m, within 0.2 s). Before: an
+// 0 m, all rest at 0.917 s (3 islands, 1454 island sub-steps, 930 passes; earlier 1.095 s, 5
+// islands, 2130 sub-steps, 1176 passes; with the islands' impulses plastic, before pair_impacts was the default: -1.3e-19 m, within 0.2 s). Before: an
 // overlap of 5.2e-8 m (an island member jumped into the striker within a pass of 6e-9 s) and
 // 637 islands, 816,917 passes: stones 1-10 nm from an island, neither joined nor let go.
 TEST(WorldCradle, OnARealBoardNoTwoStonesOverlap) { EXPECT_GE(real_board_run().worst_gap, -1e-9); }

@@ -29,8 +29,14 @@
 //      margin that still approaches (board: resolve_impact with e* = 0; pair: resolve_pair_impact
 //      with e* = 0, both with Coulomb friction integrated through the impulse, so each impulse can
 //      only remove energy), Gauss-Seidel until none approaches (the board's contacts first; after 8
-//      plain sweeps a stone that a pair impulse would press into the board is held and the other
-//      meets it as a moving surface, so a stack converges at once instead of halving per sweep);
+//      plain sweeps a stone that a pair impulse would press into the board is held: the other
+//      meets it as a moving surface, it takes the opposite impulse and at once its board contacts'
+//      plastic impulses, so a stack converges at once instead of halving per sweep, and the board
+//      takes only what its contacts carry: momentum is kept along a frictionless board). A
+//      contact that no longer approaches but slips gets the friction its normal impulse of the
+//      sub-step allows (Coulomb: the contact's total tangential impulse within mu times its total
+//      normal impulse; each such impulse only removes energy), so that impulses at other contacts
+//      do not leave it sliding (a resting pile crept at ~0.2 g h without it);
 //   4. the energy guard over the island's total energy (body_energy of every member): above the
 //      previous lattice state's, (v, L) of all members are scaled by one factor (every velocity
 //      constraint is linear and homogeneous, so no contact starts to approach); when the
