@@ -44,8 +44,8 @@ constexpr int kPlainSweeps = 8;
 // the real board: 754 islands of ~2 sub-steps each, resting at 2.3 s instead of 0.14 s).
 constexpr double kKeepMarginFactor = 10.0;
 
-// The contact's compliance K (u changes by K P for an impulse P at the point): m^-1 1 - [r] I^-1 [r]
-// with r from the centre of mass to the point.
+// The contact's compliance K (u changes by K P for an impulse P at the point): m^-1 1 - [r] I^-1
+// [r] with r from the centre of mass to the point.
 Eigen::Matrix3d compliance(const MotionModel& model, const RigidBodyState& s,
                            const Eigen::Vector3d& point_world) {
   const Eigen::Vector3d r = point_world - s.position_world;

@@ -215,11 +215,11 @@ TEST(IslandContact, ARowStruckAtOneEndMovesOnAsOneBody) {
   // (e* = 0) make the row one body at once: momentum m v0 shared by 5 m, V = v0 / 5 (less the
   // board's friction over the first sub-step, at most mu times the board's normal impulse: that
   // is 5 m g h plus the vertical momentum the row gained, the board being the only vertical force
-  // but gravity; measured 1.04 x 5 mu m g h: the row slides through the whole sub-step). Then the row slides as one
-  // block, decelerating at mu g, until a stone leaves it: each stone pitches on its own under
-  // its friction, the sharp rims pass each other and the gaps open beyond the 1 nm margin, and
-  // that stone is handed to the exact plane model (which only the World follows). Every stone
-  // leaves with the block's velocity V - mu g t and position V t - mu g t^2 / 2.
+  // but gravity; measured 1.04 x 5 mu m g h: the row slides through the whole sub-step). Then the
+  // row slides as one block, decelerating at mu g, until a stone leaves it: each stone pitches on
+  // its own under its friction, the sharp rims pass each other and the gaps open beyond the 1 nm
+  // margin, and that stone is handed to the exact plane model (which only the World follows). Every
+  // stone leaves with the block's velocity V - mu g t and position V t - mu g t^2 / 2.
   const double v0 = 0.3, mu = 0.3, h = vg::NonsmoothContactOptions{}.step_s;
   std::vector<vg::RigidBodyState> start;
   for (int k = 0; k < 5; ++k) {
@@ -236,10 +236,11 @@ TEST(IslandContact, ARowStruckAtOneEndMovesOnAsOneBody) {
   }
   EXPECT_LE(momentum, mass() * v0 + 1e-15);
   const double board_normal_ns = momentum_z + 5 * mass() * kG * h;
-  std::printf("[ row     ] friction over the first sub-step %.4f of 5 mu m g h; board's normal "
-              "impulse %.4f of 5 m g h\n",
-              (mass() * v0 - momentum) / (5 * mu * mass() * kG * h),
-              board_normal_ns / (5 * mass() * kG * h));
+  std::printf(
+      "[ row     ] friction over the first sub-step %.4f of 5 mu m g h; board's normal "
+      "impulse %.4f of 5 m g h\n",
+      (mass() * v0 - momentum) / (5 * mu * mass() * kG * h),
+      board_normal_ns / (5 * mass() * kG * h));
   EXPECT_GE(momentum, mass() * v0 - mu * board_normal_ns - 1e-15);
   EXPECT_NEAR(slowest, v0 / 5, 0.01 * v0 / 5);
   EXPECT_NEAR(fastest, v0 / 5, 0.01 * v0 / 5);

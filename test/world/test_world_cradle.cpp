@@ -547,8 +547,7 @@ void expect_rest_like_the_default(const char* name, const std::vector<RestRun>& 
     std::printf(
         "[ measured ] %s, h = %.1e s: all rest at %.3f s (%ld island sub-steps); largest energy "
         "rise %.3g of E; frozen at rest %d\n",
-        name, steps[j], runs[j].rest_at, runs[j].island_steps, runs[j].worst_rise,
-        runs[j].frozen);
+        name, steps[j], runs[j].rest_at, runs[j].island_steps, runs[j].worst_rise, runs[j].frozen);
     EXPECT_GT(runs[j].rest_at, 0.0) << "h = " << steps[j];
     EXPECT_NEAR(runs[j].rest_at, runs[0].rest_at, 0.02 * runs[0].rest_at + 2e-3)
         << "h = " << steps[j];
@@ -627,9 +626,10 @@ TEST(WorldCradle, OnARealBoardTheRowComesToRest) {
 
 // The run above never overlaps by more than the 1e-9 m. Measured: smallest pair gap
 // 0 m, all rest at 0.917 s (3 islands, 1454 island sub-steps, 930 passes; earlier 1.095 s, 5
-// islands, 2130 sub-steps, 1176 passes; with the islands' impulses plastic, before pair_impacts was the default: -1.3e-19 m, within 0.2 s). Before: an
-// overlap of 5.2e-8 m (an island member jumped into the striker within a pass of 6e-9 s) and
-// 637 islands, 816,917 passes: stones 1-10 nm from an island, neither joined nor let go.
+// islands, 2130 sub-steps, 1176 passes; with the islands' impulses plastic, before pair_impacts was
+// the default: -1.3e-19 m, within 0.2 s). Before: an overlap of 5.2e-8 m (an island member jumped
+// into the striker within a pass of 6e-9 s) and 637 islands, 816,917 passes: stones 1-10 nm from an
+// island, neither joined nor let go.
 TEST(WorldCradle, OnARealBoardNoTwoStonesOverlap) { EXPECT_GE(real_board_run().worst_gap, -1e-9); }
 
 // The default on a real board (friction 0.3 on the board, frictionless stones, e* 0.8), a
