@@ -411,20 +411,18 @@ TEST(WorldCradle, OnTheBoardAnElasticFrictionlessRowIsTheAnalyticCradle) {
 // above it comes to rest in finite time, the energy never rising, nothing dipping into the board.
 // With the islands' pair impacts (the default) the last stone leaves the row sliding (0.057 m/s,
 // 3.45 rad/s, at 11.6 ms), and the board's friction tips it into rocking on its bottom cap, 7-9
-// degrees each way (6.1 degrees at its first observed peak since the held sweeps keep momentum),
+// degrees each way (6.1 degrees at its first peak seen in plane contact),
 // rolling without slip: a pendulum whose only loss is the rolling resistance
 // l_r (the stone material's lengths are 0 here). Its couple l_r N ~ l_r m g against the cap's
 // restoring couple m g d sin(theta) (d = R - c, the centre of mass below the cap's centre) is
 // Coulomb damping: the amplitude falls by 2 l_r / d per half swing of
 // pi sqrt((I1 + m c^2) / (m g d)) (0.0650 s; peaks measured 0.0656 s apart at 9 degrees) and
 // sticks once within l_r / d of upright. Measured: rests at 0.917 s, the pendulum says 0.914 s
-// (1.095 and 1.091 s before the islands' held sweeps kept momentum and slipping contacts got
-// their friction). Earlier, with l_r = 5e-6 m (0.0528 degrees per half swing): 11.060 s, the
-// pendulum 11.044 s; the same
-// stone alone on the board from the same state rests 11.05 s after it (0: never, its energy
-// constant to 2e-17 J over 20 s), so the long rocking is the plane contact's physics, not the
-// island's. Without the pair impacts the row moved on as one plastic block and all rested within
-// 0.2 s, with no stone left to rock.
+// (1.095 and 1.091 s measured in an earlier session). Earlier, with l_r = 5e-6 m (0.0528 degrees
+// per half swing): 11.060 s, the pendulum 11.044 s; the same stone alone on the board from the same
+// state rests 11.05 s after it (0: never, its energy constant to 2e-17 J over 20 s), so the long
+// rocking is the plane contact's physics, not the island's. Without the pair impacts the row moved
+// on as one plastic block and all rested within 0.2 s, with no stone left to rock.
 struct RealBoardRun {
   double worst_rise = 0.0, worst_gap = 1.0, worst_board = 1.0, rest_at = -1.0;
   // The last stone moving: its first tilt peak once every other stone rests (time, angle).
@@ -492,10 +490,11 @@ const RealBoardRun& real_board_run() {
 // in the limit must rest at every h, at about the same time. Before the islands gave friction to
 // contacts that no longer approach, a resting pile slid at ~0.2 g h: each sub-step's impulses left
 // tangential slip at contacts pressed earlier in the sweep, above the 1e-5 m/s rest threshold
-// below h ~ 5e-5 s, so it never rested (the cradle below, the pile at 2.5e-5 s: 3.3e-5 to 4.6e-5
-// m/s, both stones sliding on a board with mu 0.3, 0.1 mm over 3 s). Checked for each run: the
-// energy never rises (sampled every 1 ms); at rest every velocity is exactly 0 and the poses stay
-// bitwise frozen.
+// below h ~ 5e-5 s, so it never rested (the pile at 2.5e-5 s: 3.3e-5 to 4.6e-5 m/s, both stones
+// sliding on a board with mu 0.3, 0.1 mm over 3 s; the cradle rested there at 0.916 s already,
+// 2632, 3184, 6706 island sub-steps at h = 1e-4, 5e-5, 2.5e-5, against 1454, 3015, 6437 now).
+// Checked for each run: the energy never rises (sampled every 1 ms); at rest every velocity is
+// exactly 0 and the poses stay bitwise frozen.
 struct RestRun {
   double rest_at = -1.0, worst_rise = 0.0;
   long island_steps = 0;
@@ -625,8 +624,9 @@ TEST(WorldCradle, OnARealBoardTheRowComesToRest) {
 }
 
 // The run above never overlaps by more than the 1e-9 m. Measured: smallest pair gap
-// 0 m, all rest at 0.917 s (3 islands, 1454 island sub-steps, 930 passes; earlier 1.095 s, 5
-// islands, 2130 sub-steps, 1176 passes; with the islands' impulses plastic, before pair_impacts was
+// 0 m, all rest at 0.917 s (3 islands, 1454 island sub-steps, 930 passes; 2632 island sub-steps
+// before the island's slipping contacts got friction; earlier 1.095 s, 5 islands, 2130 sub-steps,
+// 1176 passes; with the islands' impulses plastic, before pair_impacts was
 // the default: -1.3e-19 m, within 0.2 s). Before: an overlap of 5.2e-8 m (an island member jumped
 // into the striker within a pass of 6e-9 s) and 637 islands, 816,917 passes: stones 1-10 nm from an
 // island, neither joined nor let go.

@@ -154,8 +154,8 @@ TEST(WorldCrowd, AStoneThrownIntoABlockNeverGainsEnergyNorOverlaps) {
 }
 
 // Everything rests in finite time, with the same promises all the way. Measured: all rest at
-// 0.723 s (10 islands, 6589 island sub-steps, 794 passes, 806 pair gap checks; 0.726 s before
-// the islands' held sweeps kept momentum and slipping contacts got friction). Before (island
+// 0.723 s (10 islands, 6589 island sub-steps, 794 passes, 806 pair gap checks; 0.726 s in an
+// earlier measurement). Before (island
 // members' jumps unbounded, a stone 1-10 nm from an island neither joined nor let go, a plane
 // contact that stopped still without a rest): more than 10 s of CPU per simulated ms from 87 ms.
 TEST(WorldCrowd, AStoneThrownIntoABlockComesToRest) {
