@@ -54,6 +54,20 @@ const std::array<Eigen::Vector3d, kSphereStarts>& fibonacci_sphere() {
   return sphere;
 }
 
+// The sphere's indices from its equator towards its poles: stones on the board lie side by side,
+// so their best directions are near the horizontal, and visiting those first fills the prefix of
+// choose_starts with large values early (fewer insertions, more starts skipped by their bound).
+const std::array<int, kSphereStarts>& equator_first() {
+  static const std::array<int, kSphereStarts> order = [] {
+    std::array<int, kSphereStarts> o;
+    for (int k = 0; k < kSphereStarts; ++k) o[k] = k;
+    const auto height = [](int k) { return std::abs(2.0 * k + 1.0 - kSphereStarts); };
+    std::stable_sort(o.begin(), o.end(), [&](int p, int q) { return height(p) < height(q); });
+    return o;
+  }();
+  return order;
+}
+
 Eigen::Vector3d any_perpendicular(const Eigen::Vector3d& e) {
   const Eigen::Vector3d a =
       std::abs(e.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
@@ -108,10 +122,12 @@ constexpr int kPrefix = 17;
 // whole order is std::sort's, as before. `value(k)` is start k's F, `bound(k)` an upper bound of
 // it: a start whose bound is below the prefix's last value when the prefix is full cannot enter
 // it, and its F is computed only if the whole order is needed. `direction(k)` is its unit
-// direction. Every F that is computed is computed as before, so the result is the same, bit for
-// bit.
-template <typename Value, typename Bound, typename Direction>
-int choose_starts(int total, const Value& value, const Bound& bound, const Direction& direction,
+// direction. The starts are visited in the order visit(0), visit(1), ... (a permutation), which
+// changes how soon the prefix fills with large values, not the prefix. Every F that is computed is
+// computed as before, so the result is the same, bit for bit.
+template <typename Visit, typename Value, typename Bound, typename Direction>
+int choose_starts(int total, const Visit& visit, const Value& value, const Bound& bound,
+                  const Direction& direction,
                   std::array<Eigen::Vector3d, kPolishedStarts>* chosen) {
   const double distinct_cos = std::cos(kDistinctRad);
   const auto walk = [&](const Rank* order, int length, int* examined) {
@@ -133,7 +149,8 @@ int choose_starts(int total, const Value& value, const Bound& bound, const Direc
   std::array<Rank, kPrefix> prefix;
   int size = 0;
   bool finite = true;
-  for (int k = 0; k < total; ++k) {
+  for (int i = 0; i < total; ++i) {
+    const int k = visit(i);
     if (size == kPrefix && bound(k) < prefix[kPrefix - 1].value) continue;
     const double v = value(k);
     values[k] = v;
@@ -318,8 +335,11 @@ LensPairContact lens_pair_distance(const LensGeometry& lens_a, const LensPose& p
       return direction(k).dot(centres) - least_reaches + kBoundSlackM;
     };
     std::array<Eigen::Vector3d, kPolishedStarts> chosen;
+    // The candidates first (usually the largest values), then the sphere from its equator.
+    const std::array<int, kSphereStarts>& sphere_order = equator_first();
+    const auto visit = [&](int i) { return i < count ? i : count + sphere_order[i - count]; };
     const int chosen_count =
-        choose_starts(count + kSphereStarts, start_value, start_bound, direction, &chosen);
+        choose_starts(count + kSphereStarts, visit, start_value, start_bound, direction, &chosen);
     best_value = -kInfinity;
     for (int c = 0; c < chosen_count; ++c) {
       const Eigen::Vector3d n = problem.ascend(chosen[c], &value, &steps);
