@@ -27,6 +27,10 @@ constexpr int kSphereStarts = 96;
 constexpr int kPolishedStarts = 4;
 constexpr double kDistinctRad = 0.3;
 
+// Added to the upper bound of F used to skip starts (m): far above the round-off of F (~1e-17 m
+// for stones), far below the gaps between starts' values.
+constexpr double kBoundSlackM = 1e-12;
+
 // The closed-form candidates of lens_pair_distance: the centre line, 4 cap-cap, 2 + 2 cap-rim.
 constexpr int kCandidates = 9;
 
@@ -48,6 +52,20 @@ const std::array<Eigen::Vector3d, kSphereStarts>& fibonacci_sphere() {
     return s;
   }();
   return sphere;
+}
+
+// The sphere's indices from its equator towards its poles: stones on the board lie side by side,
+// so their best directions are near the horizontal, and visiting those first fills the prefix of
+// choose_starts with large values early (fewer insertions, more starts skipped by their bound).
+const std::array<int, kSphereStarts>& equator_first() {
+  static const std::array<int, kSphereStarts> order = [] {
+    std::array<int, kSphereStarts> o;
+    for (int k = 0; k < kSphereStarts; ++k) o[k] = k;
+    const auto height = [](int k) { return std::abs(2.0 * k + 1.0 - kSphereStarts); };
+    std::stable_sort(o.begin(), o.end(), [&](int p, int q) { return height(p) < height(q); });
+    return o;
+  }();
+  return order;
 }
 
 Eigen::Vector3d any_perpendicular(const Eigen::Vector3d& e) {
@@ -80,6 +98,81 @@ Eigen::Vector3d nearest_rim_point(const LensGeometry& lens, const LensPose& pose
   const double length = radial.norm();
   radial = length > 0.0 ? Eigen::Vector3d(radial / length) : any_perpendicular(b);
   return pose.center_world + lens.half_width() * radial;
+}
+
+// A start's place in the order of falling F: its value and its index among the starts. Sorting
+// these with the comparator on the value alone makes the same comparisons and the same moves
+// as sorting the starts themselves, so it yields the same permutation, ties included.
+struct Rank {
+  double value;
+  int index;
+};
+
+// The order's prefix that the choice of starts examines: 5 to 15 of the 105 starts for the
+// overlapping pairs of the many-stone benchmark's cluster.
+constexpr int kPrefix = 17;
+
+// Chooses the starts to polish: walking the starts in the order of falling F that std::sort
+// gives, each start at least kDistinctRad from every one chosen before, until kPolishedStarts
+// are chosen. Touching flat stones give many starts of equal F, and std::sort's order among
+// them decides which is polished first, so that order is the rule. Only the kPrefix largest
+// values are kept in order (insertion into a short sorted list, O(starts)); where the walk stays
+// in that prefix and the values it examined and the next one are strictly falling, every correct
+// sort has the same prefix, std::sort's included. Otherwise (a tie, a NaN, a longer walk) the
+// whole order is std::sort's, as before. `value(k)` is start k's F, `bound(k)` an upper bound of
+// it: a start whose bound is below the prefix's last value when the prefix is full cannot enter
+// it, and its F is computed only if the whole order is needed. `direction(k)` is its unit
+// direction. The starts are visited in the order visit(0), visit(1), ... (a permutation), which
+// changes how soon the prefix fills with large values, not the prefix. Every F that is computed is
+// computed as before, so the result is the same, bit for bit.
+template <typename Visit, typename Value, typename Bound, typename Direction>
+int choose_starts(int total, const Visit& visit, const Value& value, const Bound& bound,
+                  const Direction& direction,
+                  std::array<Eigen::Vector3d, kPolishedStarts>* chosen) {
+  const double distinct_cos = std::cos(kDistinctRad);
+  const auto walk = [&](const Rank* order, int length, int* examined) {
+    int chosen_count = 0;
+    int k = 0;
+    for (; k < length && chosen_count < kPolishedStarts; ++k) {
+      const Eigen::Vector3d& n = direction(order[k].index);
+      bool distinct = true;
+      for (int c = 0; c < chosen_count; ++c) {
+        distinct = distinct && (*chosen)[c].dot(n) < distinct_cos;
+      }
+      if (distinct) (*chosen)[chosen_count++] = n;
+    }
+    *examined = k;
+    return chosen_count;
+  };
+  std::array<double, kCandidates + kSphereStarts> values;
+  std::array<bool, kCandidates + kSphereStarts> known{};
+  std::array<Rank, kPrefix> prefix;
+  int size = 0;
+  bool finite = true;
+  for (int i = 0; i < total; ++i) {
+    const int k = visit(i);
+    if (size == kPrefix && bound(k) < prefix[kPrefix - 1].value) continue;
+    const double v = value(k);
+    values[k] = v;
+    known[k] = true;
+    finite = finite && !std::isnan(v);
+    if (size == kPrefix && !(v > prefix[kPrefix - 1].value)) continue;
+    int j = size < kPrefix ? size++ : kPrefix - 1;
+    for (; j > 0 && prefix[j - 1].value < v; --j) prefix[j] = prefix[j - 1];
+    prefix[j] = Rank{v, k};
+  }
+  int examined = 0;
+  if (finite && size == kPrefix) {
+    const int chosen_count = walk(prefix.data(), kPrefix, &examined);
+    bool strict = examined < kPrefix;
+    for (int k = 0; strict && k < examined; ++k) strict = prefix[k].value > prefix[k + 1].value;
+    if (strict) return chosen_count;
+  }
+  std::array<Rank, kCandidates + kSphereStarts> order;
+  for (int k = 0; k < total; ++k) order[k] = Rank{known[k] ? values[k] : value(k), k};
+  std::sort(order.begin(), order.begin() + total,
+            [](const Rank& p, const Rank& q) { return p.value > q.value; });
+  return walk(order.data(), total, &examined);
 }
 
 class PairProblem {
@@ -227,28 +320,26 @@ LensPairContact lens_pair_distance(const LensGeometry& lens_a, const LensPose& p
   } else {
     // Overlapping or touching: several local maxima are possible. Polish the best candidate
     // and the best well-separated local maxima of a Fibonacci sphere of directions.
-    std::array<Start, kCandidates + kSphereStarts> starts;
-    std::copy(candidates.begin(), candidates.begin() + count, starts.begin());
     const std::array<Eigen::Vector3d, kSphereStarts>& sphere = fibonacci_sphere();
-    for (int k = 0; k < kSphereStarts; ++k) {
-      starts[count + k] = Start{problem.gap(sphere[k]), sphere[k]};
-    }
-    const int total = count + kSphereStarts;
-    // In the order of falling F, each start at least kDistinctRad from every one chosen before
-    // is chosen. Touching flat stones give many starts of equal F; std::sort's order among them
-    // decides which is polished first, so the sort stays (on the same sequence as before).
-    std::sort(starts.begin(), starts.begin() + total,
-              [](const Start& p, const Start& q) { return p.value > q.value; });
+    const auto direction = [&](int k) -> const Eigen::Vector3d& {
+      return k < count ? candidates[k].n : sphere[k - count];
+    };
+    const auto start_value = [&](int k) {
+      return k < count ? candidates[k].value : problem.gap(sphere[k - count]);
+    };
+    // Each lens contains the ball of its half height c about its centre, so its reach is at
+    // least c and F(n) <= n . (x_B - x_A) - c_A - c_B; kBoundSlackM covers the round-off of both.
+    const Eigen::Vector3d centres = xb - xa;
+    const double least_reaches = lens_a.half_height() + lens_b.half_height();
+    const auto start_bound = [&](int k) {
+      return direction(k).dot(centres) - least_reaches + kBoundSlackM;
+    };
     std::array<Eigen::Vector3d, kPolishedStarts> chosen;
-    int chosen_count = 0;
-    const double distinct_cos = std::cos(kDistinctRad);
-    for (int k = 0; k < total && chosen_count < kPolishedStarts; ++k) {
-      bool distinct = true;
-      for (int c = 0; c < chosen_count; ++c) {
-        distinct = distinct && chosen[c].dot(starts[k].n) < distinct_cos;
-      }
-      if (distinct) chosen[chosen_count++] = starts[k].n;
-    }
+    // The candidates first (usually the largest values), then the sphere from its equator.
+    const std::array<int, kSphereStarts>& sphere_order = equator_first();
+    const auto visit = [&](int i) { return i < count ? i : count + sphere_order[i - count]; };
+    const int chosen_count =
+        choose_starts(count + kSphereStarts, visit, start_value, start_bound, direction, &chosen);
     best_value = -kInfinity;
     for (int c = 0; c < chosen_count; ++c) {
       const Eigen::Vector3d n = problem.ascend(chosen[c], &value, &steps);
