@@ -354,4 +354,18 @@ LensPairContact lens_pair_distance(const LensGeometry& lens_a, const LensPose& p
   return result;
 }
 
+LensPairContact lens_pair_push_contact(const LensGeometry& lens_a, const LensPose& pose_a,
+                                       const LensGeometry& lens_b, const LensPose& pose_b,
+                                       const LensPairContact& best, double gap_tolerance_m) {
+  // Overlapping, a correction along the centre line may cost this much more than the shortest.
+  constexpr double kCentreLineCost = 1.5;
+  const Eigen::Vector3d centre_line = pose_b.center_world - pose_a.center_world;
+  if (!(centre_line.norm() > 0.0)) return best;
+  const LensPairContact along =
+      lens_pair_contact_along(lens_a, pose_a, lens_b, pose_b, centre_line.normalized());
+  const bool as_good = along.gap_m >= best.gap_m - gap_tolerance_m;
+  const bool cheap = best.gap_m < 0.0 && along.gap_m >= kCentreLineCost * best.gap_m;
+  return as_good || cheap ? along : best;
+}
+
 }  // namespace virtual_go

@@ -103,29 +103,10 @@ bool apart_by_bounds(const BoardDistance& a, const RigidBodyState& sa, const Boa
   return (sb.position_world - sa.position_world).squaredNorm() > reach * reach;
 }
 
-// The pair's contact. Touching, the normal may be any direction of a set (two flat stones rim to
-// rim: every tilt within the rims' fans), and lens_pair_distance returns one of them; overlapping
-// rims (after a free sub-step) have their shortest separating translation at the edge of the
-// fans, 44.6 degrees from the stones' plane for size 33. Either would make a stone pushed along a
-// row ride up onto its neighbour. The centre line's supporting-plane gap is a lower bound of the
-// distance, so a correction along it removes the overlap too: it is preferred when its gap is as
-// good within the gap tolerance, or, overlapping, when its correction is at most
-// kCentreLineCost times the shortest.
-constexpr double kCentreLineCost = 1.5;
-
-LensPairContact pair_contact(const LensGeometry& a, const LensPose& pa, const LensGeometry& b,
-                             const LensPose& pb, const LensPairContact& best) {
-  const Eigen::Vector3d centre_line = pb.center_world - pa.center_world;
-  if (!(centre_line.norm() > 0.0)) return best;
-  const LensPairContact along = lens_pair_contact_along(a, pa, b, pb, centre_line.normalized());
-  const bool as_good = along.gap_m >= best.gap_m - kGapToleranceM;
-  const bool cheap = best.gap_m < 0.0 && along.gap_m >= kCentreLineCost * best.gap_m;
-  return as_good || cheap ? along : best;
-}
-
 LensPairContact pair_contact(const BoardDistance& a, const LensPose& pa, const BoardDistance& b,
                              const LensPose& pb, const LensPairContact& best) {
-  return pair_contact(a.lens(), pa, b.lens(), pb, best);
+  // The contact to push along (lens_pair_distance.h): not a tilted normal of touching rims.
+  return lens_pair_push_contact(a.lens(), pa, b.lens(), pb, best, kGapToleranceM);
 }
 
 }  // namespace
@@ -603,8 +584,9 @@ std::optional<LensPairContact> NonsmoothIsland::obstacle_contact(std::size_t a,
   if ((obstacles_[o].state.position_world - s_a.position_world).squaredNorm() > reach * reach)
     return std::nullopt;
   const LensPose pa = lens_pose(s_a);
-  return pair_contact(members_[a].board.lens(), pa, obstacles_[o].lens,
-                      lens_pose(obstacles_[o].state), obstacle_distance(a, pa, o, commit));
+  return lens_pair_push_contact(members_[a].board.lens(), pa, obstacles_[o].lens,
+                                lens_pose(obstacles_[o].state), obstacle_distance(a, pa, o, commit),
+                                kGapToleranceM);
 }
 
 const LensPairContact& NonsmoothIsland::obstacle_distance(std::size_t a, const LensPose& pa,

@@ -57,4 +57,17 @@ LensPairContact lens_pair_contact_along(const LensGeometry& lens_a, const LensPo
 LensPairContact lens_pair_distance(const LensGeometry& lens_a, const LensPose& pose_a,
                                    const LensGeometry& lens_b, const LensPose& pose_b);
 
+// The contact to push along (impulses, position corrections), from lens_pair_distance's `best`.
+// Touching, the normal may be any direction of a set (two flat stones rim to rim: every tilt
+// within the rims' fans), and lens_pair_distance returns one of them; overlapping rims have
+// their shortest separating translation at the edge of the fans, 44.6 degrees from the stones'
+// plane for size 33. Either would make a stone pushed along a row ride up onto its neighbour, and
+// a rounded real rim gives neither. The centre line's supporting-plane gap is a lower bound of
+// the distance, so a correction along it removes the overlap too: it is taken when its gap is as
+// good as best's within gap_tolerance_m, or, overlapping, when its correction is at most 1.5 times
+// the shortest; else best.
+LensPairContact lens_pair_push_contact(const LensGeometry& lens_a, const LensPose& pose_a,
+                                       const LensGeometry& lens_b, const LensPose& pose_b,
+                                       const LensPairContact& best, double gap_tolerance_m);
+
 }  // namespace virtual_go
