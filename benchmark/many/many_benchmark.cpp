@@ -15,6 +15,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <map>
@@ -369,6 +370,14 @@ std::string time_or_never(double t, bool has_sleep) {
 }
 
 int run(const Options& o) {
+  // The output folder is made here: without it every file would fail to open silently.
+  std::error_code made;
+  std::filesystem::create_directories(o.out, made);
+  if (made) {
+    std::cerr << "many_benchmark: --out " << o.out << ": cannot create the folder ("
+              << made.message() << ")\n";
+    return 1;
+  }
   init_many_peers();
   std::vector<std::unique_ptr<ManyMethod>> methods;
   std::vector<std::unique_ptr<ManyMethod>> all;
@@ -659,27 +668,42 @@ int run(const Options& o) {
 }  // namespace vg_bench
 
 int main(int argc, char** argv) {
+  const char* usage =
+      "usage: many_benchmark [--quick] [--methods ours,bullet,ode,mujoco] [--counts 1,10,100,361] "
+      "[--out DIR] [--nonsmooth-step H_S]\n"
+      "  The many-stone benchmark (issue 15): resting boards, two-stone collisions, a stone "
+      "thrown\n"
+      "  into a cluster, events against the number of stones. --out DIR (made if missing) gets\n"
+      "  many_results.csv, many_tables.md, many_settings.md, many_cost.dat; --nonsmooth-step: the\n"
+      "  island sub-step h in s (default the core's). scripts/benchmark.sh --many-only runs it.\n";
   vg_bench::Options o;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "--quick") {
-      o.quick = true;
-    } else if (a == "--methods" && i + 1 < argc) {
-      o.methods = argv[++i];
-    } else if (a == "--counts" && i + 1 < argc) {
-      o.counts.clear();
-      std::stringstream list(argv[++i]);
-      for (std::string c; std::getline(list, c, ',');) o.counts.push_back(std::stoi(c));
-    } else if (a == "--out" && i + 1 < argc) {
-      o.out = argv[++i];
-    } else if (a == "--nonsmooth-step" && i + 1 < argc) {
-      o.nonsmooth_step_s = std::stod(argv[++i]);
-    } else {
-      std::cerr << "usage: many_benchmark [--quick] [--methods ours,bullet,ode,mujoco] [--counts "
-                   "1,10,100,361] "
-                   "[--out DIR] [--nonsmooth-step H_S]\n";
-      return 2;
+  try {
+    for (int i = 1; i < argc; ++i) {
+      const std::string a = argv[i];
+      if (a == "--help" || a == "-h") {
+        std::cout << usage;
+        return 0;
+      } else if (a == "--quick") {
+        o.quick = true;
+      } else if (a == "--methods" && i + 1 < argc) {
+        o.methods = argv[++i];
+      } else if (a == "--counts" && i + 1 < argc) {
+        o.counts.clear();
+        std::stringstream list(argv[++i]);
+        for (std::string c; std::getline(list, c, ',');) o.counts.push_back(std::stoi(c));
+      } else if (a == "--out" && i + 1 < argc) {
+        o.out = argv[++i];
+      } else if (a == "--nonsmooth-step" && i + 1 < argc) {
+        o.nonsmooth_step_s = std::stod(argv[++i]);
+      } else {
+        std::cerr << "many_benchmark: unknown or incomplete option '" << a << "'\n" << usage;
+        return 2;
+      }
     }
+  } catch (const std::exception&) {
+    std::cerr << "many_benchmark: --counts takes whole numbers and --nonsmooth-step a number\n"
+              << usage;
+    return 2;
   }
   return vg_bench::run(o);
 }
