@@ -385,6 +385,19 @@ int run(const Options& o) {
   all.push_back(make_bullet_many());
   all.push_back(make_ode_many());
   all.push_back(make_mujoco_many());
+  // Every name asked for must be a method: an unknown one is an error, not an empty run.
+  std::stringstream asked(o.methods);
+  for (std::string name; std::getline(asked, name, ',');) {
+    const bool known =
+        std::any_of(all.begin(), all.end(), [&](const auto& m) { return m->name() == name; });
+    if (!known) {
+      std::string names;
+      for (const auto& m : all) names += (names.empty() ? "" : ", ") + m->name();
+      std::cerr << "many_benchmark: --methods: unknown method '" << name
+                << "' (the methods: " << names << ")\n";
+      return 2;
+    }
+  }
   for (auto& m : all)
     if (("," + o.methods + ",").find("," + m->name() + ",") != std::string::npos)
       methods.push_back(std::move(m));
