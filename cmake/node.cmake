@@ -11,6 +11,12 @@ add_library(virtual_go_sim
   src/sim/stone_states.cpp
   src/sim/state_output.cpp
   src/sim/stone_simulation.cpp
+  src/sim/stone_simulation_requests.cpp
+  src/sim/stone_simulation_planning.cpp
+  src/sim/stone_simulation_timeline.cpp
+  src/sim/stone_simulation_step.cpp
+  src/sim/stone_simulation_world.cpp
+  src/sim/stone_simulation_events.cpp
   src/sim/mesh_file.cpp
   src/sim/clock_watch.cpp
   src/sim/update_budget.cpp

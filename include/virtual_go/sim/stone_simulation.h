@@ -231,20 +231,13 @@ class StoneSimulation {
       return reason != EventReason::set_angular_velocity && initial_stone();
     }
   };
-  // ~place / ~remove / ~clear changes due at this step applied to the World at t_s, in order, with
-  // their events (and the World's) appended.
-  // The initial stone's changes before batch_end were applied already (step_world); those
-  // after it apply here, one by one, in order with the rest.
-  void apply_board_changes(double t_s, std::int64_t stamp_ns, std::size_t batch_end,
-                           std::vector<SegmentEvent>& events);
-  // A ~remove of the initial stone or a ~clear.
-  bool removes_initial(const Change& change) const {
-    return change.reason == EventReason::clear ||
-           (change.reason == EventReason::remove && change.name == stone_name(0));
-  }
-  // The World restarted at t_s with the initial stone in `state` and every placed stone where it
-  // is (they get new ids).
-  void reset_world(const RigidBodyState& state, double t_s);
+  // Names and bodies (src/sim/stone_simulation.cpp).
+  // The name of the stone with this World id ("" if none).
+  std::string name_of(StoneId id) const;
+  // The motion model of a World stone's body, for its outputs.
+  const MotionModel& model_of(StoneId id) const;
+
+  // Requests, checked and queued (stone_simulation_requests.cpp).
   void require_board(const std::string& request) const;
   // The name a request addresses: "" for the initial stone, or a placed stone's (one waiting to
   // be placed too), as the board will be after the requests waiting. Throws InvalidArgument
@@ -252,10 +245,14 @@ class StoneSimulation {
   std::string request_target(const std::string& name) const;
   // The names there will be once the pending requests apply, in ~stones order.
   std::vector<std::string> names_after_pending() const;
-  // reset, set_state or set_angular_velocity of one stone applied to the World at t_s on its
-  // own (a reset of the removed initial stone adds it again), with its events.
-  void apply_state_change(const Change& change, double t_s, std::int64_t stamp_ns,
-                          std::vector<SegmentEvent>& events);
+  // Refuses (InvalidArgument naming `field`) a state overlapping the board or the table.
+  // (Of the initial stone's body, or of `board`'s.)
+  void check_clear_of_board(const std::string& field, const RigidBodyState& state,
+                            const BoardDistance* board = nullptr) const;
+  void enqueue(Change change);
+  std::string answer();
+
+  // The planned layout, for the room check (stone_simulation_planning.cpp).
   // Throws InvalidArgument ("point") when a stone of `body` set down at `point` will find no room
   // on the board as the pending requests leave it (stones that move in that step aside); else
   // returns the plan, for planned_after().
@@ -268,17 +265,17 @@ class StoneSimulation {
   void planned_after(const SetDownPlan& plan);
   // One pending request applied to the planned layout, as it will apply to the World.
   void plan_change(const Change& c);
-  // The name of the stone with this World id ("" if none).
-  std::string name_of(StoneId id) const;
-  // The motion model of a World stone's body, for its outputs.
-  const MotionModel& model_of(StoneId id) const;
 
+  // The time line (stone_simulation_timeline.cpp).
   void advance_to(std::int64_t now_ns, UpdateBudget& budget, UpdateResult& result);
   // Takes up to `steps` steps (the first always, the others while the budget lasts); returns how
   // many it took.
   std::int64_t take_steps(std::int64_t steps, UpdateBudget& budget, UpdateResult& result);
   // The time line restarts at now_ns (a time jump, or the end of a pause): a new segment.
   void jump_to(std::int64_t now_ns, const std::string& detail, UpdateResult& result);
+  void hold(const std::string& cause, UpdateResult& result);
+
+  // One physics step (stone_simulation_step.cpp).
   // False: the step is not finished (the World is part-way to the next grid time, the budget
   // spent); the next update continues it.
   bool step(UpdateResult& result, UpdateBudget& budget);
@@ -292,31 +289,46 @@ class StoneSimulation {
   // The initial stone's changes among pending_[0, end).
   std::vector<Applied> apply_changes(bool auto_reset, RigidBodyState& next,
                                      std::size_t end = static_cast<std::size_t>(-1)) const;
-  // With the board: the World restarted with state_ at stamp_ns (its new epoch), and its events
-  // at that instant (a stone placed on the board comes to rest) reported.
-  void restart_world(std::int64_t stamp_ns, UpdateResult& result);
-  // A World event -> a segment event (not yet numbered), checked finite; throws otherwise.
-  SegmentEvent segment_event(const WorldEvent& event) const;
-  // Numbers and appends events built by segment_event / make_event; tracks rest.
-  void commit_events(std::vector<SegmentEvent>& events, UpdateResult& result);
-  // The instant of a World time as a stamp (rounded down to a whole ns) and its offset.
-  void split_world_time(double t_s, std::int64_t& stamp_ns, double& offset_s) const;
-  // Refuses (InvalidArgument naming `field`) a state overlapping the board or the table.
-  // (Of the initial stone's body, or of `board`'s.)
-  void check_clear_of_board(const std::string& field, const RigidBodyState& state,
-                            const BoardDistance* board = nullptr) const;
   bool auto_reset_due(std::int64_t next_ns) const;
   // A change due at the next step replaces the state (reset, set_state, auto reset).
   bool replacement_due() const;
+  // A ~remove of the initial stone or a ~clear.
+  bool removes_initial(const Change& change) const {
+    return change.reason == EventReason::clear ||
+           (change.reason == EventReason::remove && change.name == stone_name(0));
+  }
   // The state was replaced from outside the integration: a new segment's first state.
   void replace_state(const RigidBodyState& state);
+
+  // The World kept in step (stone_simulation_world.cpp).
+  // With the board: the World restarted with state_ at stamp_ns (its new epoch), and its events
+  // at that instant (a stone placed on the board comes to rest) reported.
+  void restart_world(std::int64_t stamp_ns, UpdateResult& result);
+  // The World restarted at t_s with the initial stone in `state` and every placed stone where it
+  // is (they get new ids).
+  void reset_world(const RigidBodyState& state, double t_s);
+  // ~place / ~remove / ~clear changes due at this step applied to the World at t_s, in order, with
+  // their events (and the World's) appended.
+  // The initial stone's changes before batch_end were applied already (step_world); those
+  // after it apply here, one by one, in order with the rest.
+  void apply_board_changes(double t_s, std::int64_t stamp_ns, std::size_t batch_end,
+                           std::vector<SegmentEvent>& events);
+  // reset, set_state or set_angular_velocity of one stone applied to the World at t_s on its
+  // own (a reset of the removed initial stone adds it again), with its events.
+  void apply_state_change(const Change& change, double t_s, std::int64_t stamp_ns,
+                          std::vector<SegmentEvent>& events);
+
+  // Segment events (stone_simulation_events.cpp).
+  // A World event -> a segment event (not yet numbered), checked finite; throws otherwise.
+  SegmentEvent segment_event(const WorldEvent& event) const;
+  // Numbers and appends events (the World's from segment_event, and commands'); tracks rest.
+  void commit_events(std::vector<SegmentEvent>& events, UpdateResult& result);
+  // The instant of a World time as a stamp (rounded down to a whole ns) and its offset.
+  void split_world_time(double t_s, std::int64_t& stamp_ns, double& offset_s) const;
   void begin_segment(EventReason reason, std::int64_t stamp_ns, UpdateResult& result);
   // Appends a numbered event (a new segment) with the given first state.
   void announce(EventReason reason, std::int64_t stamp_ns, const RigidBodyState& state,
                 const StateOutput& output, UpdateResult& result);
-  void hold(const std::string& cause, UpdateResult& result);
-  void enqueue(Change change);
-  std::string answer();
 
   CheckedConfig checked_;
   std::unique_ptr<Integrator> integrator_;
