@@ -46,6 +46,17 @@ void check_bound(const std::string& param, double value, double lowest, double h
   }
 }
 
+// A pair of bounds ~min_<quantity> < ~max_<quantity>, both within [lowest, highest].
+void check_bound_pair(const std::string& quantity, double min, double max, double lowest,
+                      double highest, const std::string& unit) {
+  check_bound("min_" + quantity, min, lowest, highest, unit);
+  check_bound("max_" + quantity, max, lowest, highest, unit);
+  if (!(min < max)) {
+    fail("max_" + quantity, "must be more than ~min_" + quantity + " " + format_value(min) + " " +
+                                unit + ", got " + format_value(max) + " " + unit);
+  }
+}
+
 // value within [~min_<name>, ~max_<name>].
 void check_range(const std::string& param, double value, const std::string& what,
                  const std::string& bound_name, double lowest, double highest,
@@ -218,18 +229,8 @@ CheckedConfig check_config(const StoneConfig& c) {
   check_bound("max_speed", c.max_speed, kMinBound, kMaxSpeedCap, "m/s");
   check_bound("max_distance", c.max_distance, kMinBound, kMaxDistanceCap, "m");
   check_bound("max_gravity", c.max_gravity, kMinBound, kMaxGravityCap, "m/s^2");
-  check_bound("min_mass", c.min_mass, kMinMassCap, kMaxMassCap, "kg");
-  check_bound("max_mass", c.max_mass, kMinMassCap, kMaxMassCap, "kg");
-  if (!(c.min_mass < c.max_mass)) {
-    fail("max_mass", "must be more than ~min_mass " + format_value(c.min_mass) + " kg, got " +
-                         format_value(c.max_mass) + " kg");
-  }
-  check_bound("min_width", c.min_width, kMinWidthCap, kMaxWidthCap, "m");
-  check_bound("max_width", c.max_width, kMinWidthCap, kMaxWidthCap, "m");
-  if (!(c.min_width < c.max_width)) {
-    fail("max_width", "must be more than ~min_width " + format_value(c.min_width) + " m, got " +
-                          format_value(c.max_width) + " m");
-  }
+  check_bound_pair("mass", c.min_mass, c.max_mass, kMinMassCap, kMaxMassCap, "kg");
+  check_bound_pair("width", c.min_width, c.max_width, kMinWidthCap, kMaxWidthCap, "m");
 
   require_finite_param("gravity", c.gravity_world);
   if (!(norm_without_overflow(c.gravity_world) <= c.max_gravity)) {

@@ -50,6 +50,19 @@ std::string StoneSimulation::name_of(StoneId id) const {
   return "";
 }
 
+const PlacedStone* StoneSimulation::placed_named(const std::string& name) const {
+  const auto it = std::find_if(placed_.begin(), placed_.end(),
+                               [&](const PlacedStone& p) { return p.name == name; });
+  return it == placed_.end() ? nullptr : &*it;
+}
+
+const StoneSimulation::Change* StoneSimulation::place_waiting(const std::string& name) const {
+  const auto it = std::find_if(pending_.begin(), pending_.end(), [&](const Change& c) {
+    return c.reason == EventReason::place && c.name == name;
+  });
+  return it == pending_.end() ? nullptr : &*it;
+}
+
 const MotionModel& StoneSimulation::model_of(StoneId id) const {
   for (std::size_t k = 0; k < placed_.size(); ++k) {
     if (placed_[k].id == id) return world_->body_model(body_of_placed_[k]).setup().model;

@@ -54,6 +54,29 @@ SegmentEvent StoneSimulation::segment_event(const WorldEvent& event) const {
   return out;
 }
 
+SegmentEvent StoneSimulation::command_event(std::int64_t stamp_ns, EventReason reason,
+                                            const std::string& stone, const RigidBodyState& state,
+                                            const MotionModel& model) {
+  SegmentEvent e;
+  e.stamp_ns = stamp_ns;
+  e.reason = reason;
+  e.stone = stone;
+  e.state = state;
+  e.output = state_output(model, state);
+  return e;
+}
+
+void StoneSimulation::append_after_wake(const std::vector<WorldEvent>& world_events,
+                                        std::vector<SegmentEvent> commands,
+                                        std::vector<SegmentEvent>& events) const {
+  std::size_t i = 0;
+  for (; i < world_events.size() && world_events[i].kind == WorldEventKind::wake; ++i) {
+    events.push_back(segment_event(world_events[i]));
+  }
+  for (SegmentEvent& command : commands) events.push_back(std::move(command));
+  for (; i < world_events.size(); ++i) events.push_back(segment_event(world_events[i]));
+}
+
 void StoneSimulation::commit_events(std::vector<SegmentEvent>& events, UpdateResult& result) {
   for (SegmentEvent& event : events) {
     if (event.reason != EventReason::start) ++segment_;

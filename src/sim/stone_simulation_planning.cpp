@@ -43,8 +43,7 @@ void StoneSimulation::plan_change(const Change& c) {
     names.clear();
   } else if (c.reason == EventReason::remove) {
     drop(c.name);
-  } else if (c.reason == EventReason::place && c.point && c.drop_height_m == 0.0 &&
-             c.velocity_world.isZero(0.0) && c.angular_velocity_world.isZero(0.0)) {
+  } else if (c.reason == EventReason::place && c.sets_down()) {
     try {
       apply_plan(stones, plan_set_down(*world_, world_->color_body(c.color), *c.point, stones));
       names.push_back(c.name);

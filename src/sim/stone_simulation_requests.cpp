@@ -16,7 +16,10 @@ constexpr char kApplied[] = "applied at the next physics step";
 }  // namespace
 
 std::string StoneSimulation::reset() {
-  enqueue({EventReason::reset, checked_.initial_state, {}, {}});
+  Change change;
+  change.reason = EventReason::reset;
+  change.state = checked_.initial_state;
+  enqueue(change);
   return answer();
 }
 
@@ -54,7 +57,6 @@ std::string StoneSimulation::set_state(const Eigen::Vector3d& position_world,
                                "twist.angular"};
   Change change;
   change.reason = EventReason::set_state;
-  change.omega = Eigen::Vector3d::Zero();
   change.name = target;
   if (target.empty()) {
     change.state =
@@ -63,15 +65,11 @@ std::string StoneSimulation::set_state(const Eigen::Vector3d& position_world,
     check_clear_of_board("pose.position", change.state);
   } else {
     // A placed stone (or one waiting to be): its colour's body.
-    const auto placed = std::find_if(placed_.begin(), placed_.end(),
-                                     [&](const PlacedStone& p) { return p.name == target; });
     StoneColor color = StoneColor::black;
-    if (placed != placed_.end()) {
+    if (const PlacedStone* placed = placed_named(target)) {
       color = placed->color;
-    } else {
-      for (const Change& c : pending_) {
-        if (c.reason == EventReason::place && c.name == target) color = c.color;
-      }
+    } else if (const Change* waiting = place_waiting(target)) {
+      color = waiting->color;
     }
     const WorldBodyModel& body = world_->body_model(world_->color_body(color));
     change.state = state_from_request(fields, body.setup().model, position_world, orientation_xyzw,
@@ -108,10 +106,7 @@ std::string StoneSimulation::place(const PlaceRequest& request, std::string& ans
     change.drop_height_m = h;
     change.velocity_world = request.velocity_world;
     change.angular_velocity_world = request.angular_velocity_world;
-    if (h == 0.0 && change.velocity_world.isZero(0.0) &&
-        change.angular_velocity_world.isZero(0.0)) {
-      set_down = check_room(world_->color_body(color), *change.point);
-    }
+    if (change.sets_down()) set_down = check_room(world_->color_body(color), *change.point);
   } else {
     // The colour's body is made once, here if not yet (World::color_body): its lens decides
     // whether the pose overlaps the board.
@@ -141,16 +136,7 @@ std::string StoneSimulation::remove(const std::string& name_or_point, std::strin
     (void)request_target(name_or_point);  // refuses it if removed already
   }
   std::string name;
-  const auto pending_place = [&](const std::string& n) {
-    return std::any_of(pending_.begin(), pending_.end(), [&](const Change& c) {
-      return c.reason == EventReason::place && c.name == n;
-    });
-  };
-  const auto is_placed = [&](const std::string& n) {
-    return std::any_of(placed_.begin(), placed_.end(),
-                       [&](const PlacedStone& p) { return p.name == n; });
-  };
-  if (name_or_point == stone_name(0) || is_placed(name_or_point) || pending_place(name_or_point)) {
+  if (names_a_stone(name_or_point)) {
     name = name_or_point;
     if (std::find(present.begin(), present.end(), name) == present.end()) {
       (void)request_target(name);  // removed by a request waiting: refused, naming it
@@ -238,12 +224,7 @@ std::string StoneSimulation::request_target(const std::string& name) const {
     return target == stone_name(0) ? "" : target;
   }
   // Gone (removed, cleared) or never there: say which, and what there is (the first few).
-  const bool was_here = target == stone_name(0) ||
-                        std::any_of(placed_.begin(), placed_.end(),
-                                    [&](const PlacedStone& p) { return p.name == target; }) ||
-                        std::any_of(pending_.begin(), pending_.end(), [&](const Change& c) {
-                          return c.reason == EventReason::place && c.name == target;
-                        });
+  const bool was_here = names_a_stone(target);
   std::string message = "name: " + quote_user_text(target) +
                         (was_here ? std::string(" is removed (by ~remove or ~clear") +
                                         (target == stone_name(0) ? "; ~reset puts it back)" : ")")

@@ -19,15 +19,12 @@ constexpr long kWorkPerSlice = 500;
 bool StoneSimulation::step(UpdateResult& result, UpdateBudget& budget) {
   if (world_) return step_world(result, budget);
   const std::int64_t next_ns = clock_.next_time_ns();
-  const std::int64_t auto_reset_ns = checked_.auto_reset_ns;
-  const bool auto_reset = auto_reset_ns > 0 && next_ns - segment_start_ns_ >= auto_reset_ns;
+  const bool auto_reset = auto_reset_due(next_ns);
   const MotionModel& model = checked_.setup.model;
   // A change that replaces the whole state (any pending one: all apply at this step) makes
   // integrating this step pointless, and lets a reset recover from a state the integrator
   // cannot handle.
-  const bool replaced =
-      auto_reset || std::any_of(pending_.begin(), pending_.end(),
-                                [](const Change& change) { return change.replaces_state(); });
+  const bool replaced = replacement_due();
   // Everything below works on a copy and may throw; the simulation changes only at the end.
   RigidBodyState next = state_;
   if (!replaced) integrator_->advance(next, checked_.dt_s, flight_cache_);
@@ -65,15 +62,15 @@ std::vector<StoneSimulation::Applied> StoneSimulation::apply_changes(bool auto_r
     if (change.replaces_state()) {
       next = change.state;
     } else {
-      const Eigen::Vector3d omega_world =
-          change.frame == RequestFrame::body
-              ? rotate_without_overflow(next.orientation, change.omega)
-              : change.omega;
-      next = with_angular_velocity_world(checked_.setup.model, next, omega_world);
+      next = with_angular_velocity_world(checked_.setup.model, next, change.omega_world(next));
     }
     applied.push_back({change.reason, next, {}});
   }
   return applied;
+}
+
+Eigen::Vector3d StoneSimulation::Change::omega_world(const RigidBodyState& now) const {
+  return frame == RequestFrame::body ? rotate_without_overflow(now.orientation, omega) : omega;
 }
 
 bool StoneSimulation::step_world(UpdateResult& result, UpdateBudget& budget) {
@@ -116,13 +113,7 @@ bool StoneSimulation::step_world(UpdateResult& result, UpdateBudget& budget) {
     // One event per change, each with the state it makes; the World gets the last.
     std::vector<SegmentEvent> commands;
     for (const Applied& a : applied) {
-      SegmentEvent command;
-      command.stamp_ns = next_ns;
-      command.reason = a.reason;
-      command.stone = stone_name(0);
-      command.state = a.state;
-      command.output = state_output(model, a.state);
-      commands.push_back(std::move(command));
+      commands.push_back(command_event(next_ns, a.reason, stone_name(0), a.state, model));
     }
     world_events_.clear();
     if (held_) {
@@ -132,12 +123,7 @@ bool StoneSimulation::step_world(UpdateResult& result, UpdateBudget& budget) {
     } else {
       world.set_state(initial_id_, next, t_s, world_events_);  // a resting stone wakes first
     }
-    std::size_t i = 0;
-    for (; i < world_events_.size() && world_events_[i].kind == WorldEventKind::wake; ++i) {
-      events.push_back(segment_event(world_events_[i]));
-    }
-    for (SegmentEvent& command : commands) events.push_back(std::move(command));
-    for (; i < world_events_.size(); ++i) events.push_back(segment_event(world_events_[i]));
+    append_after_wake(world_events_, std::move(commands), events);
   }
   apply_board_changes(t_s, next_ns, batch_end, events);
   const bool moved = !events.empty() || !world.all_resting();

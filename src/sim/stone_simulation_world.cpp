@@ -1,8 +1,5 @@
 // The World inside StoneSimulation (~board/enabled) kept in step with it: restarted on a new time
 // line, and the requests due at a step applied to it stone by stone, with their events.
-#include <algorithm>
-
-#include "virtual_go/geometry/rotation.h"
 #include "virtual_go/sim/stone_simulation.h"
 
 namespace virtual_go {
@@ -47,17 +44,11 @@ void StoneSimulation::reset_world(const RigidBodyState& state, double t_s) {
 void StoneSimulation::apply_board_changes(double t_s, std::int64_t stamp_ns, std::size_t batch_end,
                                           std::vector<SegmentEvent>& events) {
   World& world = *world_;
-  const auto command_event = [&](EventReason reason, const std::string& name, StoneId id) {
-    SegmentEvent e;
-    e.stamp_ns = stamp_ns;
-    e.reason = reason;
-    e.stone = name;
-    e.state = world.state(id);
-    e.output = state_output(model_of(id), e.state);
-    events.push_back(std::move(e));
+  const auto command = [&](EventReason reason, const std::string& name, StoneId id) {
+    events.push_back(command_event(stamp_ns, reason, name, world.state(id), model_of(id)));
   };
   const auto remove_placed = [&](std::size_t k, EventReason reason) {
-    command_event(reason, placed_[k].name, placed_[k].id);
+    command(reason, placed_[k].name, placed_[k].id);
     std::vector<WorldEvent> none;
     world.remove_stone(placed_[k].id, t_s, none);
     placed_.erase(placed_.begin() + static_cast<std::ptrdiff_t>(k));
@@ -65,7 +56,7 @@ void StoneSimulation::apply_board_changes(double t_s, std::int64_t stamp_ns, std
   };
   const auto remove_initial = [&](EventReason reason) {
     if (initial_removed_) return;
-    command_event(reason, stone_name(0), initial_id_);
+    command(reason, stone_name(0), initial_id_);
     std::vector<WorldEvent> none;
     world.remove_stone(initial_id_, t_s, none);
     initial_removed_ = true;
@@ -103,8 +94,7 @@ void StoneSimulation::apply_board_changes(double t_s, std::int64_t stamp_ns, std
     try {
       if (!change.point) {
         id = world.add_stone(change.color, change.state, t_s, world_events);
-      } else if (change.drop_height_m == 0.0 && change.velocity_world.isZero(0.0) &&
-                 change.angular_velocity_world.isZero(0.0)) {
+      } else if (change.sets_down()) {
         id = set_down_stone(world, change.color, *change.point, t_s, world_events).id;
       } else {
         id = drop_stone(world, change.color, *change.point, change.drop_height_m, t_s, world_events,
@@ -118,7 +108,7 @@ void StoneSimulation::apply_board_changes(double t_s, std::int64_t stamp_ns, std
     }
     placed_.push_back({change.name, change.color, id});
     body_of_placed_.push_back(world.body_of(id));
-    command_event(EventReason::place, change.name, id);
+    command(EventReason::place, change.name, id);
     for (const WorldEvent& e : world_events) events.push_back(segment_event(e));
   }
 }
@@ -127,54 +117,35 @@ void StoneSimulation::apply_state_change(const Change& change, double t_s, std::
                                          std::vector<SegmentEvent>& events) {
   World& world = *world_;
   std::vector<WorldEvent> world_events;
-  const auto command = [&](const std::string& name, StoneId id) {
-    SegmentEvent e;
-    e.stamp_ns = stamp_ns;
-    e.reason = change.reason;
-    e.stone = name;
-    e.state = world.state(id);
-    e.output = state_output(model_of(id), e.state);
-    return e;
-  };
   if (change.initial_stone() && initial_removed_) {
     // Removed earlier: only a reset brings it back (the others were refused when asked, unless
     // a reset came first).
     if (change.reason != EventReason::reset) return;
     initial_id_ = world.add_stone(0, checked_.initial_state, t_s, world_events);
     initial_removed_ = false;
-    events.push_back(command(stone_name(0), initial_id_));
+    events.push_back(command_event(stamp_ns, change.reason, stone_name(0), world.state(initial_id_),
+                                   model_of(initial_id_)));
     for (const WorldEvent& e : world_events) events.push_back(segment_event(e));
     return;
   }
   StoneId id = initial_id_;
   std::string name = stone_name(0);
   if (!change.initial_stone()) {
-    const auto it = std::find_if(placed_.begin(), placed_.end(),
-                                 [&](const PlacedStone& p) { return p.name == change.name; });
-    if (it == placed_.end()) return;  // removed by a request before it in this step
-    id = it->id;
-    name = it->name;
+    const PlacedStone* placed = placed_named(change.name);
+    if (!placed) return;  // removed by a request before it in this step
+    id = placed->id;
+    name = placed->name;
   }
   const MotionModel& model = model_of(id);
   RigidBodyState next = change.state;
   if (change.reason == EventReason::reset) next = checked_.initial_state;
   if (change.reason == EventReason::set_angular_velocity) {
     const RigidBodyState& now = world.state(id);
-    const Eigen::Vector3d omega_world = change.frame == RequestFrame::body
-                                            ? rotate_without_overflow(now.orientation, change.omega)
-                                            : change.omega;
-    next = with_angular_velocity_world(model, now, omega_world);
+    next = with_angular_velocity_world(model, now, change.omega_world(now));
   }
   world.set_state(id, next, t_s, world_events);  // a resting stone wakes first
-  std::size_t i = 0;
-  for (; i < world_events.size() && world_events[i].kind == WorldEventKind::wake; ++i) {
-    events.push_back(segment_event(world_events[i]));
-  }
-  SegmentEvent e = command(name, id);
-  e.state = next;
-  e.output = state_output(model, next);
-  events.push_back(std::move(e));
-  for (; i < world_events.size(); ++i) events.push_back(segment_event(world_events[i]));
+  append_after_wake(world_events, {command_event(stamp_ns, change.reason, name, next, model)},
+                    events);
 }
 
 }  // namespace virtual_go

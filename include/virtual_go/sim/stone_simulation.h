@@ -211,8 +211,8 @@ class StoneSimulation {
  private:
   struct Change {
     EventReason reason;
-    RigidBodyState state;   // reset, set_state: the new state; place by pose: the stone's
-    Eigen::Vector3d omega;  // set_angular_velocity
+    RigidBodyState state;  // reset, set_state: the new state; place by pose: the stone's
+    Eigen::Vector3d omega = Eigen::Vector3d::Zero();  // set_angular_velocity
     RequestFrame frame = RequestFrame::world;
     // place, remove: the stone's name; place: colour, point (absent: `state`), drop height.
     std::string name;
@@ -230,12 +230,28 @@ class StoneSimulation {
     bool replaces_state() const {
       return reason != EventReason::set_angular_velocity && initial_stone();
     }
+    // place at a point: set down at rest (no drop height, no twist), its room planned.
+    bool sets_down() const {
+      return point && drop_height_m == 0.0 && velocity_world.isZero(0.0) &&
+             angular_velocity_world.isZero(0.0);
+    }
+    // set_angular_velocity: `omega` in the world frame, for a stone in state `now`.
+    Eigen::Vector3d omega_world(const RigidBodyState& now) const;
   };
   // Names and bodies (src/sim/stone_simulation.cpp).
   // The name of the stone with this World id ("" if none).
   std::string name_of(StoneId id) const;
   // The motion model of a World stone's body, for its outputs.
   const MotionModel& model_of(StoneId id) const;
+  // The placed stone of that name, or nullptr.
+  const PlacedStone* placed_named(const std::string& name) const;
+  // The ~place waiting for the next step that gives that name, or nullptr.
+  const Change* place_waiting(const std::string& name) const;
+  // The initial stone's name, a placed stone's or one a waiting ~place gives (names are never
+  // reused: removed stones' names are none of these).
+  bool names_a_stone(const std::string& name) const {
+    return name == stone_name(0) || placed_named(name) || place_waiting(name);
+  }
 
   // Requests, checked and queued (stone_simulation_requests.cpp).
   void require_board(const std::string& request) const;
@@ -326,6 +342,16 @@ class StoneSimulation {
   // The instant of a World time as a stamp (rounded down to a whole ns) and its offset.
   void split_world_time(double t_s, std::int64_t& stamp_ns, double& offset_s) const;
   void begin_segment(EventReason reason, std::int64_t stamp_ns, UpdateResult& result);
+  // The event of a change from outside at stamp_ns (not yet numbered): `stone` in the state the
+  // change makes, with its outputs (checked finite; throws otherwise).
+  static SegmentEvent command_event(std::int64_t stamp_ns, EventReason reason,
+                                    const std::string& stone, const RigidBodyState& state,
+                                    const MotionModel& model);
+  // The World's events of a command at its instant appended to `events` with the command's own
+  // events (`commands`) after the wake the World reports first and before the rest.
+  void append_after_wake(const std::vector<WorldEvent>& world_events,
+                         std::vector<SegmentEvent> commands,
+                         std::vector<SegmentEvent>& events) const;
   // Appends a numbered event (a new segment) with the given first state.
   void announce(EventReason reason, std::int64_t stamp_ns, const RigidBodyState& state,
                 const StateOutput& output, UpdateResult& result);
