@@ -247,8 +247,8 @@ class StoneSimulation {
   const PlacedStone* placed_named(const std::string& name) const;
   // The ~place waiting for the next step that gives that name, or nullptr.
   const Change* place_waiting(const std::string& name) const;
-  // The initial stone's name, a placed stone's or one a waiting ~place gives (names are never
-  // reused: removed stones' names are none of these).
+  // The initial stone's name (also while it is removed), a placed stone's or one a waiting
+  // ~place gives; a removed placed stone's name is none of these (names are never reused).
   bool names_a_stone(const std::string& name) const {
     return name == stone_name(0) || placed_named(name) || place_waiting(name);
   }
