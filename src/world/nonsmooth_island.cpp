@@ -103,10 +103,15 @@ bool apart_by_bounds(const BoardDistance& a, const RigidBodyState& sa, const Boa
   return (sb.position_world - sa.position_world).squaredNorm() > reach * reach;
 }
 
-LensPairContact pair_contact(const BoardDistance& a, const LensPose& pa, const BoardDistance& b,
-                             const LensPose& pb, const LensPairContact& best) {
-  // The contact to push along (lens_pair_distance.h): not a tilted normal of touching rims.
-  return lens_pair_push_contact(a.lens(), pa, b.lens(), pb, best, kGapToleranceM);
+// The contact to push along (lens_pair_distance.h): not a tilted normal of touching rims.
+// `best()` gives lens_pair_distance's contact; it is asked for only when the centre line is not
+// certain to be the answer (a row at rest: the centre line, without the distance's multistart).
+template <typename Best>
+LensPairContact pair_contact(const LensGeometry& a, const LensPose& pa, const LensGeometry& b,
+                             const LensPose& pb, const Best& best) {
+  const CentreLineContact along = lens_pair_centre_line(a, pa, b, pb, kGapToleranceM);
+  if (along.certain) return along.contact;
+  return lens_pair_push_contact(along, best(), kGapToleranceM);
 }
 
 }  // namespace
@@ -484,8 +489,9 @@ void NonsmoothIsland::project(std::vector<RigidBodyState>& s, std::vector<Member
           continue;
         }
         const LensPose pa = lens_pose(s[a]), pb = lens_pose(s[b]);
-        const LensPairContact c = pair_contact(members_[a].board, pa, members_[b].board, pb,
-                                               pair_distance(a, pa, b, pb, commit));
+        const LensPairContact c = pair_contact(
+            members_[a].board.lens(), pa, members_[b].board.lens(), pb,
+            [&]() -> const LensPairContact& { return pair_distance(a, pa, b, pb, commit); });
         if (c.gap_m >= 0.0) continue;
         auto blocked = [&](std::size_t i, const Eigen::Vector3d& push) {
           for (int k = 0; k < supports[i]; ++k) {
@@ -584,9 +590,9 @@ std::optional<LensPairContact> NonsmoothIsland::obstacle_contact(std::size_t a,
   if ((obstacles_[o].state.position_world - s_a.position_world).squaredNorm() > reach * reach)
     return std::nullopt;
   const LensPose pa = lens_pose(s_a);
-  return lens_pair_push_contact(members_[a].board.lens(), pa, obstacles_[o].lens,
-                                lens_pose(obstacles_[o].state), obstacle_distance(a, pa, o, commit),
-                                kGapToleranceM);
+  return pair_contact(
+      members_[a].board.lens(), pa, obstacles_[o].lens, lens_pose(obstacles_[o].state),
+      [&]() -> const LensPairContact& { return obstacle_distance(a, pa, o, commit); });
 }
 
 const LensPairContact& NonsmoothIsland::obstacle_distance(std::size_t a, const LensPose& pa,
@@ -612,8 +618,10 @@ const LensPairContact& NonsmoothIsland::pair_distance(std::size_t a, const LensP
                                                       std::size_t b, const LensPose& pb,
                                                       bool commit) {
   // One memo per ordered pair: the projection's last sweep (no correction) and gather see the
-  // same poses, and so often do the next sub-step's checks. lens_pair_distance is a function of
-  // the two lenses and poses alone, so equal poses (bitwise) give the same contact.
+  // same poses, and so often do the next sub-step's checks. Its contact is a function of the
+  // poses and of the pair's previous normal (the warm start), so the committed sub-steps alone
+  // write it: a partial sub-step (a sample between lattice points) reads it and keeps its own
+  // contact aside, and the lattice's motion does not depend on the sample times.
   const std::size_t n = members_.size();
   if (pair_memo_.size() != n * n) pair_memo_.assign(n * n, PairMemo{});
   PairMemo& m = pair_memo_[a * n + b];
@@ -624,7 +632,16 @@ const LensPairContact& NonsmoothIsland::pair_distance(std::size_t a, const LensP
     if (commit) ++counters_.pair_distance_reuses;
     return m.contact;
   }
-  m.contact = lens_pair_distance(members_[a].board.lens(), pa, members_[b].board.lens(), pb);
+  // Seen before: warm-started from its last normal (lens_pair_distance.h).
+  const LensPairContact contact =
+      m.valid ? lens_pair_distance_from(members_[a].board.lens(), pa, members_[b].board.lens(), pb,
+                                        m.contact.normal_world)
+              : lens_pair_distance(members_[a].board.lens(), pa, members_[b].board.lens(), pb);
+  if (!commit) {
+    partial_contact_ = contact;
+    return partial_contact_;
+  }
+  m.contact = contact;
   m.pose_a = pa;
   m.pose_b = pb;
   m.valid = true;
@@ -656,8 +673,9 @@ bool NonsmoothIsland::gather(const std::vector<RigidBodyState>& s, std::vector<M
         continue;
       }
       const LensPose pa = lens_pose(s[a]), pb = lens_pose(s[b]);
-      const LensPairContact c = pair_contact(members_[a].board, pa, members_[b].board, pb,
-                                             pair_distance(a, pa, b, pb, commit));
+      const LensPairContact c = pair_contact(
+          members_[a].board.lens(), pa, members_[b].board.lens(), pb,
+          [&]() -> const LensPairContact& { return pair_distance(a, pa, b, pb, commit); });
       if (c.gap_m < -kGapToleranceM) clear = false;
       if (c.gap_m > keep_m) continue;
       ++mc[a].near;

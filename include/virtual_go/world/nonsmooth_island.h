@@ -378,7 +378,8 @@ class NonsmoothIsland {
     LensPose pose_a, pose_b;
     LensPairContact contact;
   };
-  std::vector<PairMemo> pair_memo_;  // members_.size()^2, by a * n + b
+  std::vector<PairMemo> pair_memo_;  // members_.size()^2, by a * n + b; committed sub-steps
+  LensPairContact partial_contact_;  // pair_distance's answer in a partial sub-step
   std::vector<IslandObstacle> obstacles_;
   std::vector<PairMemo> obstacle_memo_;  // members_.size() * obstacles_.size(), by a * m + o
   std::vector<char> obstacle_acted_;     // per obstacle, in the sub-step being computed
