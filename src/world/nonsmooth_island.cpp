@@ -489,6 +489,7 @@ void NonsmoothIsland::project(std::vector<RigidBodyState>& s, std::vector<Member
           continue;
         }
         const LensPose pa = lens_pose(s[a]), pb = lens_pose(s[b]);
+        if (apart_along_last_normal(a, pa, b, pb, 0.0)) continue;
         const LensPairContact c = pair_contact(
             members_[a].board.lens(), pa, members_[b].board.lens(), pb,
             [&]() -> const LensPairContact& { return pair_distance(a, pa, b, pb, commit); });
@@ -649,6 +650,20 @@ const LensPairContact& NonsmoothIsland::pair_distance(std::size_t a, const LensP
   return m.contact;
 }
 
+bool NonsmoothIsland::apart_along_last_normal(std::size_t a, const LensPose& pa, std::size_t b,
+                                              const LensPose& pb, double gap_m) const {
+  // The supporting-plane gap along the pair's last normal bounds its distance from below; where
+  // it is positive the distance's ascent from that normal reaches the distance, and the push
+  // contact's gap is at most a tolerance below it (lens_pair_distance.h). So above gap_m and
+  // twice the tolerance, the pair's push contact is farther than gap_m: a check of one gap
+  // instead of the distance (the projection's sweeps re-check pairs that one correction moved).
+  const std::size_t n = members_.size();
+  if (pair_memo_.size() != n * n) return false;
+  const PairMemo& m = pair_memo_[a * n + b];
+  return m.valid && lens_pair_gap_along(members_[a].board.lens(), pa, members_[b].board.lens(), pb,
+                                        m.contact.normal_world) > gap_m + 2.0 * kGapToleranceM;
+}
+
 bool NonsmoothIsland::gather(const std::vector<RigidBodyState>& s, std::vector<MemberContacts>& mc,
                              std::vector<PairContact>& pairs, bool commit) {
   const std::size_t n = s.size();
@@ -673,6 +688,7 @@ bool NonsmoothIsland::gather(const std::vector<RigidBodyState>& s, std::vector<M
         continue;
       }
       const LensPose pa = lens_pose(s[a]), pb = lens_pose(s[b]);
+      if (apart_along_last_normal(a, pa, b, pb, keep_m)) continue;
       const LensPairContact c = pair_contact(
           members_[a].board.lens(), pa, members_[b].board.lens(), pb,
           [&]() -> const LensPairContact& { return pair_distance(a, pa, b, pb, commit); });
@@ -1014,8 +1030,10 @@ NonsmoothIsland::Lattice NonsmoothIsland::next_lattice() {
       const double reach = (s.velocity_world - r.velocity_world).norm() * ts +
                            (rim(i, s) + rim(j, r)) * ts +
                            members_[i].setup.gravity_world.norm() * ts * ts + o.contact_margin_m;
-      if (!apart_by_bounds(members_[i].board, s, members_[j].board, r, reach)) {
-        reachable = pair_distance(i, lens_pose(s), j, lens_pose(r), true).gap_m <= reach;
+      const LensPose pi = lens_pose(s), pj = lens_pose(r);
+      if (!apart_by_bounds(members_[i].board, s, members_[j].board, r, reach) &&
+          !apart_along_last_normal(i, pi, j, pj, reach)) {
+        reachable = pair_distance(i, pi, j, pj, true).gap_m <= reach;
       }
     }
     if (reachable) continue;
