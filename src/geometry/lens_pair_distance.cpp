@@ -271,8 +271,12 @@ LensPairContact lens_pair_contact_along(const LensGeometry& lens_a, const LensPo
   return PairProblem(lens_a, pose_a, lens_b, pose_b).contact(n);
 }
 
-LensPairContact lens_pair_distance(const LensGeometry& lens_a, const LensPose& pose_a,
-                                   const LensGeometry& lens_b, const LensPose& pose_b) {
+namespace {
+
+// lens_pair_distance, and with `warm` lens_pair_distance_from.
+LensPairContact pair_distance(const LensGeometry& lens_a, const LensPose& pose_a,
+                              const LensGeometry& lens_b, const LensPose& pose_b,
+                              const Eigen::Vector3d* warm) {
   const PairProblem problem(lens_a, pose_a, lens_b, pose_b);
   const Eigen::Vector3d& xa = pose_a.center_world;
   const Eigen::Vector3d& xb = pose_b.center_world;
@@ -315,9 +319,20 @@ LensPairContact lens_pair_distance(const LensGeometry& lens_a, const LensPose& p
   }
   int steps = 0;
   double value = 0.0;
+  bool found = false;
   if (best_value > 0.0) {
     best_n = problem.ascend(best_n, &value, &steps);
-  } else {
+    found = true;
+  } else if (warm != nullptr && warm->allFinite() && warm->norm() > 0.0) {
+    // Overlapping or touching: the local maximum reached from the previous normal, when it is
+    // at least as good as the closed-form candidates (else the multistart below).
+    const Eigen::Vector3d n = problem.ascend(warm->normalized(), &value, &steps);
+    if (value >= best_value) {
+      best_n = n;
+      found = true;
+    }
+  }
+  if (!found) {
     // Overlapping or touching: several local maxima are possible. Polish the best candidate
     // and the best well-separated local maxima of a Fibonacci sphere of directions.
     const std::array<Eigen::Vector3d, kSphereStarts>& sphere = fibonacci_sphere();
@@ -354,18 +369,69 @@ LensPairContact lens_pair_distance(const LensGeometry& lens_a, const LensPose& p
   return result;
 }
 
+}  // namespace
+
+LensPairContact lens_pair_distance(const LensGeometry& lens_a, const LensPose& pose_a,
+                                   const LensGeometry& lens_b, const LensPose& pose_b) {
+  return pair_distance(lens_a, pose_a, lens_b, pose_b, nullptr);
+}
+
+LensPairContact lens_pair_distance_from(const LensGeometry& lens_a, const LensPose& pose_a,
+                                        const LensGeometry& lens_b, const LensPose& pose_b,
+                                        const Eigen::Vector3d& previous_normal_world) {
+  return pair_distance(lens_a, pose_a, lens_b, pose_b, &previous_normal_world);
+}
+
+namespace {
+
+// The point p lies inside the lens at `pose` by at least margin_m: inside both cap spheres.
+bool inside_lens(const LensGeometry& lens, const LensPose& pose, const Eigen::Vector3d& p,
+                 double margin_m) {
+  const Eigen::Vector3d offset = lens.sphere_offset() * pose.axis_world;
+  const double radius = lens.sphere_radius() - margin_m;
+  return (p - (pose.center_world + offset)).norm() <= radius &&
+         (p - (pose.center_world - offset)).norm() <= radius;
+}
+
+}  // namespace
+
+CentreLineContact lens_pair_centre_line(const LensGeometry& lens_a, const LensPose& pose_a,
+                                        const LensGeometry& lens_b, const LensPose& pose_b,
+                                        double gap_tolerance_m) {
+  // The midpoint must lie this far inside each lens (m): far above the round-off of the test
+  // (~1e-17 m), far below the tolerance.
+  constexpr double kInsideMarginM = 1e-15;
+  CentreLineContact along;
+  const Eigen::Vector3d centre_line = pose_b.center_world - pose_a.center_world;
+  if (!(centre_line.norm() > 0.0)) return along;
+  along.valid = true;
+  along.contact = lens_pair_contact_along(lens_a, pose_a, lens_b, pose_b, centre_line.normalized());
+  const LensPairContact& c = along.contact;
+  const Eigen::Vector3d midpoint = 0.5 * (c.point_a_world + c.point_b_world);
+  const bool overlapping = inside_lens(lens_a, pose_a, midpoint, kInsideMarginM) &&
+                           inside_lens(lens_b, pose_b, midpoint, kInsideMarginM);
+  const double upper_bound_m = overlapping ? 0.0 : (c.point_b_world - c.point_a_world).norm();
+  along.certain = c.gap_m >= upper_bound_m - 0.5 * gap_tolerance_m;
+  return along;
+}
+
+LensPairContact lens_pair_push_contact(const CentreLineContact& along, const LensPairContact& best,
+                                       double gap_tolerance_m) {
+  // Overlapping, a correction along the centre line may cost this much more than the shortest.
+  constexpr double kCentreLineCost = 1.5;
+  if (!along.valid) return best;
+  const double gap_m = along.contact.gap_m;
+  const bool as_good = gap_m >= best.gap_m - gap_tolerance_m;
+  const bool cheap = best.gap_m < 0.0 && gap_m >= kCentreLineCost * best.gap_m;
+  return as_good || cheap ? along.contact : best;
+}
+
 LensPairContact lens_pair_push_contact(const LensGeometry& lens_a, const LensPose& pose_a,
                                        const LensGeometry& lens_b, const LensPose& pose_b,
                                        const LensPairContact& best, double gap_tolerance_m) {
-  // Overlapping, a correction along the centre line may cost this much more than the shortest.
-  constexpr double kCentreLineCost = 1.5;
-  const Eigen::Vector3d centre_line = pose_b.center_world - pose_a.center_world;
-  if (!(centre_line.norm() > 0.0)) return best;
-  const LensPairContact along =
-      lens_pair_contact_along(lens_a, pose_a, lens_b, pose_b, centre_line.normalized());
-  const bool as_good = along.gap_m >= best.gap_m - gap_tolerance_m;
-  const bool cheap = best.gap_m < 0.0 && along.gap_m >= kCentreLineCost * best.gap_m;
-  return as_good || cheap ? along : best;
+  return lens_pair_push_contact(
+      lens_pair_centre_line(lens_a, pose_a, lens_b, pose_b, gap_tolerance_m), best,
+      gap_tolerance_m);
 }
 
 }  // namespace virtual_go

@@ -103,10 +103,15 @@ bool apart_by_bounds(const BoardDistance& a, const RigidBodyState& sa, const Boa
   return (sb.position_world - sa.position_world).squaredNorm() > reach * reach;
 }
 
-LensPairContact pair_contact(const BoardDistance& a, const LensPose& pa, const BoardDistance& b,
-                             const LensPose& pb, const LensPairContact& best) {
-  // The contact to push along (lens_pair_distance.h): not a tilted normal of touching rims.
-  return lens_pair_push_contact(a.lens(), pa, b.lens(), pb, best, kGapToleranceM);
+// The contact to push along (lens_pair_distance.h): not a tilted normal of touching rims.
+// `best()` gives lens_pair_distance's contact; it is asked for only when the centre line is not
+// certain to be the answer (a row at rest: the centre line, without the distance's multistart).
+template <typename Best>
+LensPairContact pair_contact(const LensGeometry& a, const LensPose& pa, const LensGeometry& b,
+                             const LensPose& pb, const Best& best) {
+  const CentreLineContact along = lens_pair_centre_line(a, pa, b, pb, kGapToleranceM);
+  if (along.certain) return along.contact;
+  return lens_pair_push_contact(along, best(), kGapToleranceM);
 }
 
 }  // namespace
@@ -484,8 +489,10 @@ void NonsmoothIsland::project(std::vector<RigidBodyState>& s, std::vector<Member
           continue;
         }
         const LensPose pa = lens_pose(s[a]), pb = lens_pose(s[b]);
-        const LensPairContact c = pair_contact(members_[a].board, pa, members_[b].board, pb,
-                                               pair_distance(a, pa, b, pb, commit));
+        if (apart_along_last_normal(a, pa, b, pb, 0.0)) continue;
+        const LensPairContact c = pair_contact(
+            members_[a].board.lens(), pa, members_[b].board.lens(), pb,
+            [&]() -> const LensPairContact& { return pair_distance(a, pa, b, pb, commit); });
         if (c.gap_m >= 0.0) continue;
         auto blocked = [&](std::size_t i, const Eigen::Vector3d& push) {
           for (int k = 0; k < supports[i]; ++k) {
@@ -584,9 +591,9 @@ std::optional<LensPairContact> NonsmoothIsland::obstacle_contact(std::size_t a,
   if ((obstacles_[o].state.position_world - s_a.position_world).squaredNorm() > reach * reach)
     return std::nullopt;
   const LensPose pa = lens_pose(s_a);
-  return lens_pair_push_contact(members_[a].board.lens(), pa, obstacles_[o].lens,
-                                lens_pose(obstacles_[o].state), obstacle_distance(a, pa, o, commit),
-                                kGapToleranceM);
+  return pair_contact(
+      members_[a].board.lens(), pa, obstacles_[o].lens, lens_pose(obstacles_[o].state),
+      [&]() -> const LensPairContact& { return obstacle_distance(a, pa, o, commit); });
 }
 
 const LensPairContact& NonsmoothIsland::obstacle_distance(std::size_t a, const LensPose& pa,
@@ -612,8 +619,10 @@ const LensPairContact& NonsmoothIsland::pair_distance(std::size_t a, const LensP
                                                       std::size_t b, const LensPose& pb,
                                                       bool commit) {
   // One memo per ordered pair: the projection's last sweep (no correction) and gather see the
-  // same poses, and so often do the next sub-step's checks. lens_pair_distance is a function of
-  // the two lenses and poses alone, so equal poses (bitwise) give the same contact.
+  // same poses, and so often do the next sub-step's checks. Its contact is a function of the
+  // poses and of the pair's previous normal (the warm start), so the committed sub-steps alone
+  // write it: a partial sub-step (a sample between lattice points) reads it and keeps its own
+  // contact aside, and the lattice's motion does not depend on the sample times.
   const std::size_t n = members_.size();
   if (pair_memo_.size() != n * n) pair_memo_.assign(n * n, PairMemo{});
   PairMemo& m = pair_memo_[a * n + b];
@@ -624,12 +633,35 @@ const LensPairContact& NonsmoothIsland::pair_distance(std::size_t a, const LensP
     if (commit) ++counters_.pair_distance_reuses;
     return m.contact;
   }
-  m.contact = lens_pair_distance(members_[a].board.lens(), pa, members_[b].board.lens(), pb);
+  // Seen before: warm-started from its last normal (lens_pair_distance.h).
+  const LensPairContact contact =
+      m.valid ? lens_pair_distance_from(members_[a].board.lens(), pa, members_[b].board.lens(), pb,
+                                        m.contact.normal_world)
+              : lens_pair_distance(members_[a].board.lens(), pa, members_[b].board.lens(), pb);
+  if (!commit) {
+    partial_contact_ = contact;
+    return partial_contact_;
+  }
+  m.contact = contact;
   m.pose_a = pa;
   m.pose_b = pb;
   m.valid = true;
   if (commit) ++counters_.pair_distances;
   return m.contact;
+}
+
+bool NonsmoothIsland::apart_along_last_normal(std::size_t a, const LensPose& pa, std::size_t b,
+                                              const LensPose& pb, double gap_m) const {
+  // The supporting-plane gap along the pair's last normal bounds its distance from below; where
+  // it is positive the distance's ascent from that normal reaches the distance, and the push
+  // contact's gap is at most a tolerance below it (lens_pair_distance.h). So above gap_m and
+  // twice the tolerance, the pair's push contact is farther than gap_m: a check of one gap
+  // instead of the distance (the projection's sweeps re-check pairs that one correction moved).
+  const std::size_t n = members_.size();
+  if (pair_memo_.size() != n * n) return false;
+  const PairMemo& m = pair_memo_[a * n + b];
+  return m.valid && lens_pair_gap_along(members_[a].board.lens(), pa, members_[b].board.lens(), pb,
+                                        m.contact.normal_world) > gap_m + 2.0 * kGapToleranceM;
 }
 
 bool NonsmoothIsland::gather(const std::vector<RigidBodyState>& s, std::vector<MemberContacts>& mc,
@@ -656,8 +688,10 @@ bool NonsmoothIsland::gather(const std::vector<RigidBodyState>& s, std::vector<M
         continue;
       }
       const LensPose pa = lens_pose(s[a]), pb = lens_pose(s[b]);
-      const LensPairContact c = pair_contact(members_[a].board, pa, members_[b].board, pb,
-                                             pair_distance(a, pa, b, pb, commit));
+      if (apart_along_last_normal(a, pa, b, pb, keep_m)) continue;
+      const LensPairContact c = pair_contact(
+          members_[a].board.lens(), pa, members_[b].board.lens(), pb,
+          [&]() -> const LensPairContact& { return pair_distance(a, pa, b, pb, commit); });
       if (c.gap_m < -kGapToleranceM) clear = false;
       if (c.gap_m > keep_m) continue;
       ++mc[a].near;
@@ -996,8 +1030,10 @@ NonsmoothIsland::Lattice NonsmoothIsland::next_lattice() {
       const double reach = (s.velocity_world - r.velocity_world).norm() * ts +
                            (rim(i, s) + rim(j, r)) * ts +
                            members_[i].setup.gravity_world.norm() * ts * ts + o.contact_margin_m;
-      if (!apart_by_bounds(members_[i].board, s, members_[j].board, r, reach)) {
-        reachable = pair_distance(i, lens_pose(s), j, lens_pose(r), true).gap_m <= reach;
+      const LensPose pi = lens_pose(s), pj = lens_pose(r);
+      if (!apart_by_bounds(members_[i].board, s, members_[j].board, r, reach) &&
+          !apart_along_last_normal(i, pi, j, pj, reach)) {
+        reachable = pair_distance(i, pi, j, pj, true).gap_m <= reach;
       }
     }
     if (reachable) continue;

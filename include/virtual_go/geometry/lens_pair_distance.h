@@ -57,6 +57,16 @@ LensPairContact lens_pair_contact_along(const LensGeometry& lens_a, const LensPo
 LensPairContact lens_pair_distance(const LensGeometry& lens_a, const LensPose& pose_a,
                                    const LensGeometry& lens_b, const LensPose& pose_b);
 
+// lens_pair_distance for a pair seen a moment before with contact normal previous_normal_world
+// (an island's sub-steps and projection sweeps). Apart, the same maximum (unique). Overlapping or
+// touching, the local maximum reached by the ascent from the previous normal when its gap is at
+// least the closed-form candidates' (else the multistart): the contact followed continuously,
+// not searched for anew. It may be a shallower local maximum than the multistart's; its gap is
+// still a lower bound of the signed distance, so a correction by it along its normal separates.
+LensPairContact lens_pair_distance_from(const LensGeometry& lens_a, const LensPose& pose_a,
+                                        const LensGeometry& lens_b, const LensPose& pose_b,
+                                        const Eigen::Vector3d& previous_normal_world);
+
 // The contact to push along (impulses, position corrections), from lens_pair_distance's `best`.
 // Touching, the normal may be any direction of a set (two flat stones rim to rim: every tilt
 // within the rims' fans), and lens_pair_distance returns one of them; overlapping rims have
@@ -69,5 +79,25 @@ LensPairContact lens_pair_distance(const LensGeometry& lens_a, const LensPose& p
 LensPairContact lens_pair_push_contact(const LensGeometry& lens_a, const LensPose& pose_a,
                                        const LensGeometry& lens_b, const LensPose& pose_b,
                                        const LensPairContact& best, double gap_tolerance_m);
+
+// lens_pair_push_contact's centre-line contact, and whether it is certain to be the push contact
+// whatever `best` is, so that lens_pair_distance need not be called. Every best has gap F(n) for
+// some n, at most the signed distance, which is at most any upper bound U of it: the centre
+// line's gap at least U - gap_tolerance_m / 2 is then as good as best's (the other half of the
+// tolerance covers the round-off of the gaps, ~1e-17 m). U is 0 when the midpoint of the two
+// support points lies inside both lenses (overlapping), else those points' distance; touching
+// and slightly overlapping stones side by side (a row at rest) get their contact this way.
+struct CentreLineContact {
+  bool valid = false;    // the centres differ: `contact` is the centre line's
+  bool certain = false;  // the push contact whatever best is
+  LensPairContact contact;
+};
+CentreLineContact lens_pair_centre_line(const LensGeometry& lens_a, const LensPose& pose_a,
+                                        const LensGeometry& lens_b, const LensPose& pose_b,
+                                        double gap_tolerance_m);
+
+// lens_pair_push_contact given the centre line's contact (from lens_pair_centre_line).
+LensPairContact lens_pair_push_contact(const CentreLineContact& along, const LensPairContact& best,
+                                       double gap_tolerance_m);
 
 }  // namespace virtual_go

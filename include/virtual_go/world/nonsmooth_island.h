@@ -315,6 +315,10 @@ class NonsmoothIsland {
   // lens_pair_distance of members a and b at these poses, from the memo when it has them.
   const LensPairContact& pair_distance(std::size_t a, const LensPose& pa, std::size_t b,
                                        const LensPose& pb, bool commit);
+  // True when the gap of members a and b along their last normal (the memo's) shows that their
+  // push contact's gap exceeds gap_m, without computing their distance.
+  bool apart_along_last_normal(std::size_t a, const LensPose& pa, std::size_t b, const LensPose& pb,
+                               double gap_m) const;
   // The contacts within the margin of the poses in s; false if any overlaps beyond tolerance.
   bool gather(const std::vector<RigidBodyState>& s, std::vector<MemberContacts>& mc,
               std::vector<PairContact>& pairs, bool commit);
@@ -378,7 +382,8 @@ class NonsmoothIsland {
     LensPose pose_a, pose_b;
     LensPairContact contact;
   };
-  std::vector<PairMemo> pair_memo_;  // members_.size()^2, by a * n + b
+  std::vector<PairMemo> pair_memo_;  // members_.size()^2, by a * n + b; committed sub-steps
+  LensPairContact partial_contact_;  // pair_distance's answer in a partial sub-step
   std::vector<IslandObstacle> obstacles_;
   std::vector<PairMemo> obstacle_memo_;  // members_.size() * obstacles_.size(), by a * m + o
   std::vector<char> obstacle_acted_;     // per obstacle, in the sub-step being computed
