@@ -189,7 +189,7 @@ class ImpulseProcess {
         // order kSnap / K_tt), then stick or re-slip, both straight phases to the end.
         pt_ -= k_.topLeftCorner<2, 2>().ldlt().solve(ut);
         stuck_ = can_stick_;
-        advance_linear(can_stick_ ? stick_rate_ : Eigen::Vector2d(-mu_ * ray_), kInfinity);
+        advance_linear(can_stick_ ? stick_rate_ : Eigen::Vector2d(-mu_ * ray()), kInfinity);
         return;
       }
       const Eigen::Vector2d dir = ut / s;
@@ -208,8 +208,8 @@ class ImpulseProcess {
         ++steps_;
         continue;  // now at u_t ~ 0: snapped on the next pass
       }
-      if (s_rate > 0.0 && !can_stick_ && s * (dir - ray_).norm() <= kRay) {
-        advance_linear(-mu_ * ray_, kInfinity);
+      if (s_rate > 0.0 && !can_stick_ && s * (dir - ray()).norm() <= kRay) {
+        advance_linear(-mu_ * ray(), kInfinity);
         return;
       }
       if (s <= kApproach && s_rate < 0.0) {
@@ -285,7 +285,21 @@ class ImpulseProcess {
     const Eigen::Vector2d ktn = k_.topRightCorner<2, 1>();
     stick_rate_ = -ktt.ldlt().solve(ktn);
     can_stick_ = stick_rate_.norm() <= mu_;
-    if (can_stick_) return;
+  }
+
+  // The re-slip direction when the contact cannot stick, computed when first asked for (most
+  // impacts never ask: it costs an eigensolve and a root search).
+  const Eigen::Vector2d& ray() {
+    if (!ray_known_) {
+      find_ray();
+      ray_known_ = true;
+    }
+    return ray_;
+  }
+
+  void find_ray() {
+    const Eigen::Matrix2d ktt = k_.topLeftCorner<2, 2>();
+    const Eigen::Vector2d ktn = k_.topRightCorner<2, 1>();
     // K_tn = (l 1 + mu K_tt) s with |s| = 1: in K_tt's eigenbasis |s(l)| falls strictly from
     // |K_tt^-1 K_tn| / mu > 1 at l = 0 to <= 1 at l = |K_tn|, so l is unique.
     const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(ktt);
@@ -426,6 +440,7 @@ class ImpulseProcess {
   bool can_stick_ = true;
   Eigen::Vector2d stick_rate_ = Eigen::Vector2d::Zero();
   Eigen::Vector2d ray_ = Eigen::Vector2d::Zero();  // the re-slip direction when !can_stick_
+  bool ray_known_ = false;                         // ray_ computed (ray())
   int steps_ = 0, rejected_ = 0;
   bool fallback_ = false;
   bool closed_form_stop_ = false;
