@@ -192,6 +192,9 @@ class ImpulseProcess {
         advance_linear(can_stick_ ? stick_rate_ : Eigen::Vector2d(-mu_ * ray()), kInfinity);
         return;
       }
+      // The slip has slowed enough that it provably stops before compression ends: the
+      // plastic full stop in closed form from here (the end the integration would reach).
+      if (sticks_before_compression_ends()) return;
       const Eigen::Vector2d dir = ut / s;
       const Eigen::Vector2d accel =
           k_.topRightCorner<2, 1>() - mu_ * k_.topLeftCorner<2, 2>() * dir;
@@ -338,7 +341,11 @@ class ImpulseProcess {
   // cone holds: the slip phase adds |dP_t| = mu dp, the stuck phase |dP_t| <= mu dp. Energy:
   // dE = u-.P + P.K P / 2 = -u-.K^-1 u- / 2 < 0. The slip integration reaches the same P up to
   // its tolerance (it snaps onto u_t = 0, then sticks along the same straight line). A computed
-  // P that round-off put outside the cone goes to the integration instead.
+  // P that round-off put outside the cone goes to the integration instead. The same holds from
+  // any point of the slip integration before compression ends (s0 and u_n- then the slip speed
+  // and normal velocity there; the slip so far added |dP_t| = mu dp): the end is again u+ = 0,
+  // P = -K^-1 u-, so a slip that closes on u_t = 0 slowly (steps shrinking with |u_t|) is cut
+  // short as soon as the bound holds.
   bool sticks_before_compression_ends() {
     if (e_ != 0.0 || !can_stick_) return false;
     const Eigen::Matrix2d ktt = k_.topLeftCorner<2, 2>();
@@ -347,7 +354,8 @@ class ImpulseProcess {
     const double half_diff = 0.5 * (ktt(0, 0) - ktt(1, 1));
     const double lambda_min = half_trace - std::hypot(half_diff, ktt(0, 1));
     const double r = mu_ * lambda_min - ktn;
-    const double s0 = u0_.head<2>().norm(), un0 = u0_.z();
+    const Eigen::Vector3d u = velocity(p_, pt_);
+    const double s0 = u.head<2>().norm(), un0 = u.z();
     if (!(r > 0.0) || !(un0 < 0.0)) return false;
     if (!(s0 * (1.0 + mu_ * ktn) < -un0 * r)) return false;  // s0 / r < p_lo
     const Eigen::Vector3d p = -k_.ldlt().solve(u0_);
