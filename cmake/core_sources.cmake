@@ -54,6 +54,7 @@ set(VG_CORE_SOURCES
   src/world/support_plane.cpp
   src/world/nonsmooth_contact.cpp
   src/world/nonsmooth_island.cpp
+  src/world/island_impulses.cpp
   src/world/broad_phase.cpp
   src/world/flight_track.cpp
   src/world/world_config.cpp

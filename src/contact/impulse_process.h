@@ -189,9 +189,12 @@ class ImpulseProcess {
         // order kSnap / K_tt), then stick or re-slip, both straight phases to the end.
         pt_ -= k_.topLeftCorner<2, 2>().ldlt().solve(ut);
         stuck_ = can_stick_;
-        advance_linear(can_stick_ ? stick_rate_ : Eigen::Vector2d(-mu_ * ray_), kInfinity);
+        advance_linear(can_stick_ ? stick_rate_ : Eigen::Vector2d(-mu_ * ray()), kInfinity);
         return;
       }
+      // The slip has slowed enough that it provably stops before compression ends: the
+      // plastic full stop in closed form from here (the end the integration would reach).
+      if (sticks_before_compression_ends()) return;
       const Eigen::Vector2d dir = ut / s;
       const Eigen::Vector2d accel =
           k_.topRightCorner<2, 1>() - mu_ * k_.topLeftCorner<2, 2>() * dir;
@@ -208,8 +211,8 @@ class ImpulseProcess {
         ++steps_;
         continue;  // now at u_t ~ 0: snapped on the next pass
       }
-      if (s_rate > 0.0 && !can_stick_ && s * (dir - ray_).norm() <= kRay) {
-        advance_linear(-mu_ * ray_, kInfinity);
+      if (s_rate > 0.0 && !can_stick_ && s * (dir - ray()).norm() <= kRay) {
+        advance_linear(-mu_ * ray(), kInfinity);
         return;
       }
       if (s <= kApproach && s_rate < 0.0) {
@@ -285,7 +288,21 @@ class ImpulseProcess {
     const Eigen::Vector2d ktn = k_.topRightCorner<2, 1>();
     stick_rate_ = -ktt.ldlt().solve(ktn);
     can_stick_ = stick_rate_.norm() <= mu_;
-    if (can_stick_) return;
+  }
+
+  // The re-slip direction when the contact cannot stick, computed when first asked for (most
+  // impacts never ask: it costs an eigensolve and a root search).
+  const Eigen::Vector2d& ray() {
+    if (!ray_known_) {
+      find_ray();
+      ray_known_ = true;
+    }
+    return ray_;
+  }
+
+  void find_ray() {
+    const Eigen::Matrix2d ktt = k_.topLeftCorner<2, 2>();
+    const Eigen::Vector2d ktn = k_.topRightCorner<2, 1>();
     // K_tn = (l 1 + mu K_tt) s with |s| = 1: in K_tt's eigenbasis |s(l)| falls strictly from
     // |K_tt^-1 K_tn| / mu > 1 at l = 0 to <= 1 at l = |K_tn|, so l is unique.
     const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(ktt);
@@ -324,7 +341,11 @@ class ImpulseProcess {
   // cone holds: the slip phase adds |dP_t| = mu dp, the stuck phase |dP_t| <= mu dp. Energy:
   // dE = u-.P + P.K P / 2 = -u-.K^-1 u- / 2 < 0. The slip integration reaches the same P up to
   // its tolerance (it snaps onto u_t = 0, then sticks along the same straight line). A computed
-  // P that round-off put outside the cone goes to the integration instead.
+  // P that round-off put outside the cone goes to the integration instead. The same holds from
+  // any point of the slip integration before compression ends (s0 and u_n- then the slip speed
+  // and normal velocity there; the slip so far added |dP_t| = mu dp): the end is again u+ = 0,
+  // P = -K^-1 u-, so a slip that closes on u_t = 0 slowly (steps shrinking with |u_t|) is cut
+  // short as soon as the bound holds.
   bool sticks_before_compression_ends() {
     if (e_ != 0.0 || !can_stick_) return false;
     const Eigen::Matrix2d ktt = k_.topLeftCorner<2, 2>();
@@ -333,7 +354,8 @@ class ImpulseProcess {
     const double half_diff = 0.5 * (ktt(0, 0) - ktt(1, 1));
     const double lambda_min = half_trace - std::hypot(half_diff, ktt(0, 1));
     const double r = mu_ * lambda_min - ktn;
-    const double s0 = u0_.head<2>().norm(), un0 = u0_.z();
+    const Eigen::Vector3d u = velocity(p_, pt_);
+    const double s0 = u.head<2>().norm(), un0 = u.z();
     if (!(r > 0.0) || !(un0 < 0.0)) return false;
     if (!(s0 * (1.0 + mu_ * ktn) < -un0 * r)) return false;  // s0 / r < p_lo
     const Eigen::Vector3d p = -k_.ldlt().solve(u0_);
@@ -426,6 +448,7 @@ class ImpulseProcess {
   bool can_stick_ = true;
   Eigen::Vector2d stick_rate_ = Eigen::Vector2d::Zero();
   Eigen::Vector2d ray_ = Eigen::Vector2d::Zero();  // the re-slip direction when !can_stick_
+  bool ray_known_ = false;                         // ray_ computed (ray())
   int steps_ = 0, rejected_ = 0;
   bool fallback_ = false;
   bool closed_form_stop_ = false;

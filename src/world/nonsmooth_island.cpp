@@ -12,6 +12,7 @@
 #include "virtual_go/contact/time_of_impact.h"
 #include "virtual_go/flight/exact_motion.h"
 #include "virtual_go/geometry/lens_pair_distance.h"
+#include "virtual_go/world/island_impulses.h"
 
 namespace virtual_go {
 namespace {
@@ -44,51 +45,10 @@ constexpr int kPlainSweeps = 8;
 // the real board: 754 islands of ~2 sub-steps each, resting at 2.3 s instead of 0.14 s).
 constexpr double kKeepMarginFactor = 10.0;
 
-// The contact's compliance K (u changes by K P for an impulse P at the point): m^-1 1 - [r] I^-1
-// [r] with r from the centre of mass to the point.
-Eigen::Matrix3d compliance(const MotionModel& model, const RigidBodyState& s,
-                           const Eigen::Vector3d& point_world) {
-  const Eigen::Vector3d r = point_world - s.position_world;
-  Eigen::Matrix3d rx;
-  rx << 0, -r.z(), r.y(), r.z(), 0, -r.x(), -r.y(), r.x(), 0;
-  return Eigen::Matrix3d::Identity() / model.mass_properties().mass() -
-         rx * model.inertia_world(s.orientation).inverse() * rx;
-}
-
 void apply_impulse(const MotionModel& model, RigidBodyState& s, const Eigen::Vector3d& point_world,
                    const Eigen::Vector3d& impulse_world) {
   s.velocity_world += impulse_world / model.mass_properties().mass();
   s.angular_momentum_world += (point_world - s.position_world).cross(impulse_world);
-}
-
-// Friction at a contact that no longer approaches but still slips (u_t), after earlier impulses
-// of the sub-step pressed it with the normal impulse N (accumulated: the contact's impulses so
-// far, normal n): the tangential impulse alpha P_t, P_t = -K_tt^-1 u_t the one that stops the
-// slip, alpha in [0, 1] the largest that keeps the contact's total tangential impulse within
-// mu N. Its energy change is (alpha^2 / 2 - alpha) u_t K_tt^-1 u_t <= 0. Zero when nothing to do.
-Eigen::Vector3d friction_impulse(const Eigen::Vector3d& n, const Eigen::Matrix3d& k,
-                                 const Eigen::Vector3d& u, const Eigen::Vector3d& accumulated,
-                                 double mu, double slip_tolerance_mps) {
-  const double normal_ns = accumulated.dot(n);
-  const Eigen::Vector3d u_t = u - u.dot(n) * n;
-  if (!(mu > 0.0) || !(normal_ns > 0.0) || !(u_t.norm() > slip_tolerance_mps)) {
-    return Eigen::Vector3d::Zero();
-  }
-  const Eigen::Vector3d t1 = u_t.normalized(), t2 = n.cross(t1);
-  Eigen::Matrix<double, 3, 2> basis;
-  basis << t1, t2;
-  const Eigen::Matrix2d k_tt = basis.transpose() * k * basis;
-  const Eigen::Vector2d p2 = -k_tt.ldlt().solve(basis.transpose() * u_t);
-  const Eigen::Vector3d p_t = basis * p2;
-  const Eigen::Vector3d t_sum = accumulated - normal_ns * n;
-  const double limit = mu * normal_ns;
-  // Largest alpha in [0, 1] with |t_sum + alpha p_t| <= limit.
-  const double a = p_t.squaredNorm(), b = 2.0 * t_sum.dot(p_t),
-               c = t_sum.squaredNorm() - limit * limit;
-  if (!(a > 0.0) || c > 0.0) return Eigen::Vector3d::Zero();
-  const double alpha = std::min(1.0, (-b + std::sqrt(std::max(0.0, b * b - 4 * a * c))) / (2 * a));
-  if (!(alpha > 0.0)) return Eigen::Vector3d::Zero();
-  return alpha * p_t;
 }
 
 ContactMaterial plastic(ContactMaterial m) {
@@ -722,7 +682,8 @@ bool NonsmoothIsland::gather(const std::vector<RigidBodyState>& s, std::vector<M
 
 bool NonsmoothIsland::board_impulses(std::size_t i, std::vector<RigidBodyState>& s,
                                      std::vector<MemberContacts>& mc,
-                                     std::vector<Eigen::Vector3d>& accumulated, bool commit) {
+                                     std::vector<Eigen::Vector3d>& accumulated,
+                                     SweepCompliances& compliances, bool commit) {
   const MemberContacts& m = mc[i];
   const MotionModel& model = members_[i].setup.model;
   bool acted = false;
@@ -739,8 +700,9 @@ bool NonsmoothIsland::board_impulses(std::size_t i, std::vector<RigidBodyState>&
       s[i] = impact.state;
       sum += impact.impulse_world;
     } else {
-      const Eigen::Vector3d p = friction_impulse(n, compliance(model, s[i], point), u, sum,
-                                                 material.friction, kApproachToleranceMps);
+      if (!may_slip(n, u, sum, material.friction, kApproachToleranceMps)) continue;
+      const Eigen::Vector3d p = friction_impulse(n, compliances.board(i, k, model, s[i], point), u,
+                                                 sum, material.friction, kApproachToleranceMps);
       if (p.isZero()) continue;
       apply_impulse(model, s[i], point, p);
       sum += p;
@@ -795,10 +757,11 @@ NonsmoothIsland::Step NonsmoothIsland::sub_step(const Lattice& lattice_from, dou
   // normal part bounds the friction a contact that no longer approaches may still give.
   std::vector<Eigen::Vector3d> board_sum(2 * n, Eigen::Vector3d::Zero());
   std::vector<Eigen::Vector3d> pair_sum(pairs.size(), Eigen::Vector3d::Zero());
+  SweepCompliances compliances(n, pairs.size());  // the poses stay through the sweeps
   for (; !hold && velocity_sweeps < options_.max_sweeps; ++velocity_sweeps) {
     bool acted = false;
     for (std::size_t i = 0; i < n; ++i) {
-      if (board_impulses(i, s, out.contacts, board_sum, commit)) acted = true;
+      if (board_impulses(i, s, out.contacts, board_sum, compliances, commit)) acted = true;
     }
     if (obstacle_impulses(s, out.contacts, pairs, commit)) acted = true;
     for (std::size_t j = 0; j < pairs.size(); ++j) {
@@ -810,9 +773,12 @@ NonsmoothIsland::Step NonsmoothIsland::sub_step(const Lattice& lattice_from, dou
       const double u_n = p.normal_world.dot(u);
       if (!(u_n < -kApproachToleranceMps)) {
         // Not approaching: the friction its normal impulse so far allows, if it slips.
+        if (!may_slip(p.normal_world, u, pair_sum[j], stone_plastic_.friction,
+                      kApproachToleranceMps)) {
+          continue;
+        }
         const Eigen::Vector3d f = friction_impulse(
-            p.normal_world,
-            compliance(ma, s[p.a], p.point_world) + compliance(mb, s[p.b], p.point_world), u,
+            p.normal_world, compliances.pair(j, p.a, ma, s[p.a], p.b, mb, s[p.b], p.point_world), u,
             pair_sum[j], stone_plastic_.friction, kApproachToleranceMps);
         if (f.isZero()) continue;
         apply_impulse(mb, s[p.b], p.point_world, f);
@@ -858,7 +824,7 @@ NonsmoothIsland::Step NonsmoothIsland::sub_step(const Lattice& lattice_from, dou
         s[moving].angular_momentum_world = impact.state.angular_momentum_world;
         apply_impulse(members_[held].setup.model, s[held], p.point_world, -impact.impulse_world);
         pair_sum[j] += held_a ? impact.impulse_world : Eigen::Vector3d(-impact.impulse_world);
-        board_impulses(held, s, out.contacts, board_sum, commit);
+        board_impulses(held, s, out.contacts, board_sum, compliances, commit);
       } else {
         const PairImpact impact = resolve_pair_impact(ma, s[p.a], mb, s[p.b], p.point_world,
                                                       p.normal_world, stone_plastic_);

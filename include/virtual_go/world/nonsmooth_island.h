@@ -105,6 +105,8 @@
 
 namespace virtual_go {
 
+class SweepCompliances;  // island_impulses.h
+
 struct NonsmoothContactOptions {
   double step_s = 1e-4;  // the sub-step h, s
   // Contacts with a gap up to this (m) count as touching: an approach there is stopped.
@@ -299,10 +301,11 @@ class NonsmoothIsland {
   Step sub_step(const Lattice& from, double h_s, bool commit);
   // Step 3's plastic impulses of member i's board and table contacts that approach, and the
   // friction of those that no longer approach but slip, within mu times their normal impulse so
-  // far (accumulated, 2 per member, updated): true if any acted.
+  // far (accumulated, 2 per member, updated; their compliances from the sub-step's store):
+  // true if any acted.
   bool board_impulses(std::size_t i, std::vector<RigidBodyState>& s,
                       std::vector<MemberContacts>& mc, std::vector<Eigen::Vector3d>& accumulated,
-                      bool commit);
+                      SweepCompliances& compliances, bool commit);
   // Step 3's impacts between members (the rule for simultaneous contacts), on s.
   void resolve_pair_impacts(std::vector<RigidBodyState>& s, std::vector<MemberContacts>& mc,
                             const std::vector<PairContact>& pairs, bool free, bool commit);

@@ -1,0 +1,74 @@
+// The impulse maths of the island's plastic sweeps (nonsmooth_island.cpp, step 3): a contact's
+// compliance, the friction of a contact that no longer approaches but slips, and a per-sub-step
+// store of the compliances. Within one sub-step's sweeps the impulses change velocities and
+// angular momenta, and poses only by the impacts' renormalised orientations (last bits), so a
+// member's inverse world inertia and a contact's compliance are computed once per pose, with the
+// arithmetic of a fresh computation (the sweeps' results are the same bit for bit).
+#pragma once
+
+#include <Eigen/Core>
+#include <cstddef>
+#include <vector>
+
+#include "virtual_go/body/motion_model.h"
+#include "virtual_go/body/rigid_body_state.h"
+
+namespace virtual_go {
+
+// The compliance K of a contact (its velocity changes by K P for an impulse P at the point):
+// m^-1 1 - [r] I_world^-1 [r], r from the centre of mass to the point (m), 1/kg.
+Eigen::Matrix3d contact_compliance(double mass_kg, const Eigen::Matrix3d& inverse_inertia_world,
+                                   const Eigen::Vector3d& lever_arm_world);
+
+// Whether friction_impulse can act at a contact of unit normal n whose velocity is u (m/s) and
+// whose impulses so far in the sub-step sum to `accumulated` (N s): mu > 0, a positive normal
+// impulse, and a slip speed above slip_tolerance_mps. Cheap: asked before K is needed.
+bool may_slip(const Eigen::Vector3d& n, const Eigen::Vector3d& u,
+              const Eigen::Vector3d& accumulated, double mu, double slip_tolerance_mps);
+
+// Friction at a contact that no longer approaches but still slips (u_t), after earlier impulses
+// of the sub-step pressed it with the normal impulse N (accumulated: the contact's impulses so
+// far, normal n, compliance k): the tangential impulse alpha P_t, P_t = -K_tt^-1 u_t the one that
+// stops the slip, alpha in [0, 1] the largest that keeps the contact's total tangential impulse
+// within mu N. Its energy change is (alpha^2 / 2 - alpha) u_t K_tt^-1 u_t <= 0. Zero when nothing
+// to do (may_slip false, or the cone already full).
+Eigen::Vector3d friction_impulse(const Eigen::Vector3d& n, const Eigen::Matrix3d& k,
+                                 const Eigen::Vector3d& u, const Eigen::Vector3d& accumulated,
+                                 double mu, double slip_tolerance_mps);
+
+// One sub-step's compliances: of each member's board and table contacts (slots 2 i, 2 i + 1) and
+// of each pair contact (K_a + K_b), and each member's inverse world inertia behind them, for the
+// contact points of the sub-step's gather. An entry is reused while the member's pose is the same
+// bit for bit: the impacts hand back their state's validated copy, whose orientation is
+// renormalised (the last bit can change), and then it is computed afresh.
+class SweepCompliances {
+ public:
+  SweepCompliances(std::size_t members, std::size_t pairs);
+  // Member i's contact in slot k (0, 1) at point_world.
+  const Eigen::Matrix3d& board(std::size_t i, int k, const MotionModel& model,
+                               const RigidBodyState& s, const Eigen::Vector3d& point_world);
+  // Pair contact j between members a (model_a, s_a) and b at point_world: K_a + K_b.
+  const Eigen::Matrix3d& pair(std::size_t j, std::size_t a, const MotionModel& model_a,
+                              const RigidBodyState& s_a, std::size_t b, const MotionModel& model_b,
+                              const RigidBodyState& s_b, const Eigen::Vector3d& point_world);
+
+ private:
+  struct MemberEntry {
+    long version = 0;  // 0: nothing yet; one more for every pose seen
+    Eigen::Vector3d position_world;
+    Eigen::Quaterniond orientation;
+    Eigen::Matrix3d inverse_inertia_world;
+  };
+  struct ContactEntry {
+    long version_a = 0, version_b = 0;  // the members' versions it was computed at
+    Eigen::Matrix3d k;
+  };
+  // Member i's entry for the pose in s (computed afresh when the pose differs).
+  const MemberEntry& member(std::size_t i, const MotionModel& model, const RigidBodyState& s);
+  Eigen::Matrix3d compliance(const MemberEntry& m, const MotionModel& model,
+                             const Eigen::Vector3d& point_world) const;
+  std::vector<MemberEntry> members_;
+  std::vector<ContactEntry> board_, pair_;
+};
+
+}  // namespace virtual_go
