@@ -54,6 +54,9 @@ set(VG_CORE_SOURCES
   src/world/support_plane.cpp
   src/world/nonsmooth_contact.cpp
   src/world/nonsmooth_island.cpp
+  src/world/nonsmooth_island_contacts.cpp
+  src/world/nonsmooth_island_energy.cpp
+  src/world/nonsmooth_island_sub_step.cpp
   src/world/island_impulses.cpp
   src/world/broad_phase.cpp
   src/world/flight_track.cpp

@@ -1,0 +1,303 @@
+// NonsmoothIsland's contacts: their detection (gather, the pair distances and their memo, the
+// obstacles) and step 2, the position corrections out of every overlap (project).
+#include <algorithm>
+#include <optional>
+
+#include "nonsmooth_island_impl.h"
+#include "virtual_go/geometry/lens_pair_distance.h"
+#include "virtual_go/world/nonsmooth_island.h"
+
+namespace virtual_go {
+namespace {
+
+// A position correction moves this much (m) beyond the touching pose, so that the recomputed
+// gap, whose round-off is ~1e-17 m, comes out non-negative.
+constexpr double kCorrectionSlackM = 1e-15;
+// No handed-out state overlaps by more than this (m): gaps are exact to ~1e-17 m.
+constexpr double kGapToleranceM = 1e-12;
+constexpr int kMaxCorrections = 16;        // per member and sweep, board and table
+constexpr int kMaxProjectionSweeps = 100;  // then the touching members keep their poses
+// A pair correction along n does not move a stone whose board contact normal makes a cosine
+// above this with the direction it would be pushed into the board.
+constexpr double kBlockedCosine = 1e-6;
+// A member leaves the island only with no other member within this many contact margins: the
+// World joins stones in contact within one margin (touching, approaching or not), so a member let
+// go just beyond one margin would rejoin within a few passes, again and again (a cradle row on
+// the real board: 754 islands of ~2 sub-steps each, resting at 2.3 s instead of 0.14 s).
+constexpr double kKeepMarginFactor = 10.0;
+
+using nonsmooth_island_detail::apart_by_bounds;
+
+// The contact to push along (lens_pair_distance.h): not a tilted normal of touching rims.
+// `best()` gives lens_pair_distance's contact; it is asked for only when the centre line is not
+// certain to be the answer (a row at rest: the centre line, without the distance's multistart).
+template <typename Best>
+LensPairContact pair_contact(const LensGeometry& a, const LensPose& pa, const LensGeometry& b,
+                             const LensPose& pb, const Best& best) {
+  const CentreLineContact along = lens_pair_centre_line(a, pa, b, pb, kGapToleranceM);
+  if (along.certain) return along.contact;
+  return lens_pair_push_contact(along, best(), kGapToleranceM);
+}
+
+}  // namespace
+
+bool NonsmoothIsland::free_of_board(const std::vector<MemberContacts>& mc) const {
+  for (std::size_t i = 0; i < mc.size(); ++i) {
+    // An obstacle is an outside body, as the board is.
+    if (lattice_.active[i] && (mc[i].board > 0 || mc[i].obstacles > 0)) return false;
+  }
+  return true;
+}
+
+void NonsmoothIsland::project(std::vector<RigidBodyState>& s, std::vector<MemberContacts>& mc,
+                              bool commit, int& sweeps) {
+  const std::size_t n = s.size();
+  // The board normals each member lies on (within the margin after its board corrections).
+  std::vector<int> supports(n, 0);
+  std::vector<Eigen::Vector3d> support_normal(2 * n);
+  for (sweeps = 0; sweeps < kMaxProjectionSweeps; ++sweeps) {
+    bool corrected = false;
+    // The board and the table: translate along the deeper contact's normal (their normals are
+    // the separating directions, so one correction along one of them makes that gap zero).
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!lattice_.active[i] || !members_[i].board_enabled) continue;
+      for (int k = 0; k < kMaxCorrections; ++k) {
+        const LensPose pose = lens_pose(s[i]);
+        const BoardContact box = members_[i].board.box(pose), table = members_[i].board.table(pose);
+        const BoardContact& deeper = table.lens.gap_m < box.lens.gap_m ? table : box;
+        if (k == 0) {
+          supports[i] = 0;
+          for (const BoardContact* c : {&box, &table}) {
+            if (c->lens.gap_m <= options_.contact_margin_m) {
+              support_normal[2 * i + supports[i]++] = c->lens.normal_world;
+            }
+          }
+        }
+        if (deeper.lens.gap_m >= 0.0) break;
+        if (commit) {
+          counters_.deepest_overlap_m = std::max(counters_.deepest_overlap_m, -deeper.lens.gap_m);
+          ++counters_.projections;
+        }
+        s[i].position_world += (kCorrectionSlackM - deeper.lens.gap_m) * deeper.lens.normal_world;
+        mc[i].loaded = true;
+        corrected = true;
+      }
+    }
+    // Stone pairs: both along the pair normal, split by inverse mass; a stone that the
+    // correction would press into a board contact it lies on stays (the board holds it).
+    for (std::size_t a = 0; a < n; ++a) {
+      if (!lattice_.active[a]) continue;
+      for (std::size_t b = a + 1; b < n; ++b) {
+        if (!lattice_.active[b] ||
+            apart_by_bounds(members_[a].board, s[a], members_[b].board, s[b], 0.0)) {
+          continue;
+        }
+        const LensPose pa = lens_pose(s[a]), pb = lens_pose(s[b]);
+        if (apart_along_last_normal(a, pa, b, pb, 0.0)) continue;
+        const LensPairContact c = pair_contact(
+            members_[a].board.lens(), pa, members_[b].board.lens(), pb,
+            [&]() -> const LensPairContact& { return pair_distance(a, pa, b, pb, commit); });
+        if (c.gap_m >= 0.0) continue;
+        auto blocked = [&](std::size_t i, const Eigen::Vector3d& push) {
+          for (int k = 0; k < supports[i]; ++k) {
+            if (push.dot(support_normal[2 * i + k]) < -kBlockedCosine) return true;
+          }
+          return false;
+        };
+        double wa = 1.0 / members_[a].setup.model.mass_properties().mass();
+        double wb = 1.0 / members_[b].setup.model.mass_properties().mass();
+        const bool hold_a = blocked(a, -c.normal_world), hold_b = blocked(b, c.normal_world);
+        if (hold_a != hold_b) {
+          if (hold_a) wa = 0.0;
+          if (hold_b) wb = 0.0;
+        }
+        const double depth = kCorrectionSlackM - c.gap_m;
+        s[a].position_world -= (wa / (wa + wb) * depth) * c.normal_world;
+        s[b].position_world += (wb / (wa + wb) * depth) * c.normal_world;
+        if (commit) {
+          counters_.deepest_overlap_m = std::max(counters_.deepest_overlap_m, -c.gap_m);
+          ++counters_.projections;
+          ++counters_.pair_projections;
+        }
+        mc[a].loaded = mc[b].loaded = true;
+        corrected = true;
+      }
+    }
+    if (project_obstacles(s, mc, commit)) corrected = true;
+    if (!corrected) {
+      ++sweeps;
+      return;
+    }
+  }
+}
+
+bool NonsmoothIsland::project_obstacles(std::vector<RigidBodyState>& s,
+                                        std::vector<MemberContacts>& mc, bool commit) {
+  // Only the member moves, along the pair normal by the whole overlap, as out of the board.
+  bool corrected = false;
+  for (std::size_t a = 0; a < s.size(); ++a) {
+    if (!lattice_.active[a]) continue;
+    for (std::size_t o = 0; o < obstacles_.size(); ++o) {
+      const std::optional<LensPairContact> found = obstacle_contact(a, s[a], o, 0.0, commit);
+      if (!found) continue;
+      const LensPairContact& c = *found;
+      if (c.gap_m >= 0.0) continue;
+      if (c.gap_m < -kGapToleranceM) obstacle_acted_[o] = 1;
+      s[a].position_world -= (kCorrectionSlackM - c.gap_m) * c.normal_world;
+      if (commit) {
+        counters_.deepest_overlap_m = std::max(counters_.deepest_overlap_m, -c.gap_m);
+        ++counters_.projections;
+        ++counters_.obstacle_projections;
+      }
+      mc[a].loaded = true;
+      corrected = true;
+    }
+  }
+  return corrected;
+}
+
+void NonsmoothIsland::set_obstacles(std::vector<IslandObstacle> obstacles) {
+  for (IslandObstacle& o : obstacles) o.state = o.state.validated();
+  obstacles_ = std::move(obstacles);
+  obstacle_memo_.assign(members_.size() * obstacles_.size(), PairMemo{});
+}
+
+std::optional<LensPairContact> NonsmoothIsland::obstacle_contact(std::size_t a,
+                                                                 const RigidBodyState& s_a,
+                                                                 std::size_t o, double margin_m,
+                                                                 bool commit) {
+  const double reach =
+      members_[a].board.lens().half_width() + obstacles_[o].lens.half_width() + margin_m;
+  if ((obstacles_[o].state.position_world - s_a.position_world).squaredNorm() > reach * reach)
+    return std::nullopt;
+  const LensPose pa = lens_pose(s_a);
+  return pair_contact(
+      members_[a].board.lens(), pa, obstacles_[o].lens, lens_pose(obstacles_[o].state),
+      [&]() -> const LensPairContact& { return obstacle_distance(a, pa, o, commit); });
+}
+
+const LensPairContact& NonsmoothIsland::obstacle_distance(std::size_t a, const LensPose& pa,
+                                                          std::size_t o, bool commit) {
+  // The obstacle does not move: the memo holds while the member's pose is the same (bitwise).
+  PairMemo& m = obstacle_memo_[a * obstacles_.size() + o];
+  const auto same = [](const LensPose& x, const LensPose& y) {
+    return x.center_world == y.center_world && x.axis_world == y.axis_world;
+  };
+  if (m.valid && same(m.pose_a, pa)) {
+    if (commit) ++counters_.pair_distance_reuses;
+    return m.contact;
+  }
+  m.contact = lens_pair_distance(members_[a].board.lens(), pa, obstacles_[o].lens,
+                                 lens_pose(obstacles_[o].state));
+  m.pose_a = pa;
+  m.valid = true;
+  if (commit) ++counters_.pair_distances;
+  return m.contact;
+}
+
+const LensPairContact& NonsmoothIsland::pair_distance(std::size_t a, const LensPose& pa,
+                                                      std::size_t b, const LensPose& pb,
+                                                      bool commit) {
+  // One memo per ordered pair: the projection's last sweep (no correction) and gather see the
+  // same poses, and so often do the next sub-step's checks. Its contact is a function of the
+  // poses and of the pair's previous normal (the warm start), so the committed sub-steps alone
+  // write it: a partial sub-step (a sample between lattice points) reads it and keeps its own
+  // contact aside, and the lattice's motion does not depend on the sample times.
+  const std::size_t n = members_.size();
+  if (pair_memo_.size() != n * n) pair_memo_.assign(n * n, PairMemo{});
+  PairMemo& m = pair_memo_[a * n + b];
+  const auto same = [](const LensPose& x, const LensPose& y) {
+    return x.center_world == y.center_world && x.axis_world == y.axis_world;
+  };
+  if (m.valid && same(m.pose_a, pa) && same(m.pose_b, pb)) {
+    if (commit) ++counters_.pair_distance_reuses;
+    return m.contact;
+  }
+  // Seen before: warm-started from its last normal (lens_pair_distance.h).
+  const LensPairContact contact =
+      m.valid ? lens_pair_distance_from(members_[a].board.lens(), pa, members_[b].board.lens(), pb,
+                                        m.contact.normal_world)
+              : lens_pair_distance(members_[a].board.lens(), pa, members_[b].board.lens(), pb);
+  if (!commit) {
+    partial_contact_ = contact;
+    return partial_contact_;
+  }
+  m.contact = contact;
+  m.pose_a = pa;
+  m.pose_b = pb;
+  m.valid = true;
+  if (commit) ++counters_.pair_distances;
+  return m.contact;
+}
+
+bool NonsmoothIsland::apart_along_last_normal(std::size_t a, const LensPose& pa, std::size_t b,
+                                              const LensPose& pb, double gap_m) const {
+  // The supporting-plane gap along the pair's last normal bounds its distance from below; where
+  // it is positive the distance's ascent from that normal reaches the distance, and the push
+  // contact's gap is at most a tolerance below it (lens_pair_distance.h). So above gap_m and
+  // twice the tolerance, the pair's push contact is farther than gap_m: a check of one gap
+  // instead of the distance (the projection's sweeps re-check pairs that one correction moved).
+  const std::size_t n = members_.size();
+  if (pair_memo_.size() != n * n) return false;
+  const PairMemo& m = pair_memo_[a * n + b];
+  return m.valid && lens_pair_gap_along(members_[a].board.lens(), pa, members_[b].board.lens(), pb,
+                                        m.contact.normal_world) > gap_m + 2.0 * kGapToleranceM;
+}
+
+bool NonsmoothIsland::gather(const std::vector<RigidBodyState>& s, std::vector<MemberContacts>& mc,
+                             std::vector<PairContact>& pairs, bool commit) {
+  const std::size_t n = s.size();
+  bool clear = true;
+  pairs.clear();
+  for (std::size_t i = 0; i < n; ++i) {
+    mc[i].board = mc[i].stones = mc[i].near = 0;
+    if (!lattice_.active[i] || !members_[i].board_enabled) continue;
+    const LensPose pose = lens_pose(s[i]);
+    for (const BoardContact& c : {members_[i].board.box(pose), members_[i].board.table(pose)}) {
+      if (c.lens.gap_m < -kGapToleranceM) clear = false;
+      if (c.lens.gap_m <= options_.contact_margin_m) mc[i].contact[mc[i].board++] = c;
+    }
+  }
+  for (std::size_t a = 0; a < n; ++a) {
+    if (!lattice_.active[a]) continue;
+    for (std::size_t b = a + 1; b < n; ++b) {
+      const double keep_m =
+          std::max(options_.keep_margin_m, kKeepMarginFactor * options_.contact_margin_m);
+      if (!lattice_.active[b] ||
+          apart_by_bounds(members_[a].board, s[a], members_[b].board, s[b], keep_m)) {
+        continue;
+      }
+      const LensPose pa = lens_pose(s[a]), pb = lens_pose(s[b]);
+      if (apart_along_last_normal(a, pa, b, pb, keep_m)) continue;
+      const LensPairContact c = pair_contact(
+          members_[a].board.lens(), pa, members_[b].board.lens(), pb,
+          [&]() -> const LensPairContact& { return pair_distance(a, pa, b, pb, commit); });
+      if (c.gap_m < -kGapToleranceM) clear = false;
+      if (c.gap_m > keep_m) continue;
+      ++mc[a].near;
+      ++mc[b].near;
+      if (c.gap_m > options_.contact_margin_m) continue;
+      ++mc[a].stones;
+      ++mc[b].stones;
+      pairs.push_back(PairContact{a, b, 0.5 * (c.point_a_world + c.point_b_world), c.normal_world});
+    }
+  }
+  for (std::size_t a = 0; a < n; ++a) {
+    mc[a].obstacles = 0;
+    if (!lattice_.active[a]) continue;
+    for (std::size_t o = 0; o < obstacles_.size(); ++o) {
+      const std::optional<LensPairContact> found =
+          obstacle_contact(a, s[a], o, options_.contact_margin_m, commit);
+      if (!found) continue;
+      const LensPairContact& c = *found;
+      if (c.gap_m < -kGapToleranceM) clear = false;
+      if (c.gap_m > options_.contact_margin_m) continue;
+      ++mc[a].obstacles;
+      pairs.push_back(
+          PairContact{a, o, 0.5 * (c.point_a_world + c.point_b_world), c.normal_world, true});
+    }
+  }
+  return clear;
+}
+
+}  // namespace virtual_go
