@@ -63,7 +63,7 @@ vg::ContactMaterial material(double mu) {
 }
 
 // The velocity sweeps the island runs before it starts holding a stone pressed into the board
-// (nonsmooth_island.cpp, kPlainSweeps).
+// (nonsmooth_island_sub_step.cpp, kPlainSweeps).
 constexpr int kPlainSweeps = 8;
 
 vg::NonsmoothContactOptions options(double h, int max_sweeps) {

@@ -1,9 +1,9 @@
-// The impulse maths of the island's plastic sweeps (nonsmooth_island.cpp, step 3): a contact's
-// compliance, the friction of a contact that no longer approaches but slips, and a per-sub-step
-// store of the compliances. Within one sub-step's sweeps the impulses change velocities and
-// angular momenta, and poses only by the impacts' renormalised orientations (last bits), so a
-// member's inverse world inertia and a contact's compliance are computed once per pose, with the
-// arithmetic of a fresh computation (the sweeps' results are the same bit for bit).
+// The impulse maths of the island's plastic sweeps (nonsmooth_island_sub_step.cpp, step 3): a
+// contact's compliance, the friction of a contact that no longer approaches but slips, and a
+// per-sub-step store of the compliances. Within one sub-step's sweeps the impulses change
+// velocities and angular momenta, and poses only by the impacts' renormalised orientations (last
+// bits), so a member's inverse world inertia and a contact's compliance are computed once per pose,
+// with the arithmetic of a fresh computation (the sweeps' results are the same bit for bit).
 #pragma once
 
 #include <Eigen/Core>
