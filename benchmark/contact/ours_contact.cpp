@@ -140,7 +140,7 @@ class OursContact : public ContactMethod {
              ", " + num(o.plane_contact.max_step_s),
          phys + "\"Sustained contact\" (Dormand-Prince 8(5,3), dop853.h)"},
         {"fallback: sub-step (s), rest speed (m/s) for (s)",
-         num(o.nonsmooth.step_s) + ", " + num(o.nonsmooth.rest_speed_m_s) + " for " +
+         num(o.nonsmooth.step_s) + ", " + num(o.nonsmooth.rest_speed_mps) + " for " +
              num(o.nonsmooth.rest_time_s),
          phys + "\"World\" (the fallback)"},
         {"sampling", "advance_to(k dt): every event up to k dt, the exact state at k dt",

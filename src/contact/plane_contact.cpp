@@ -62,8 +62,8 @@ PlaneContact::Impl::Impl(const PlaneContactSetup& setup, const PlaneRegion& regi
   require_positive("contact options.max_step_s", options.max_step_s);
   require_positive("contact options.initial_step_s", options.initial_step_s);
   require_positive("contact options.gap_tolerance_m", options.gap_tolerance_m);
-  require_positive("contact options.normal_velocity_tolerance_m_s",
-                   options.normal_velocity_tolerance_m_s);
+  require_positive("contact options.normal_velocity_tolerance_mps",
+                   options.normal_velocity_tolerance_mps);
   const RigidBodyState state = state_in.validated();
   const LensGeometry& lens = setup.lens;
 
@@ -85,10 +85,10 @@ PlaneContact::Impl::Impl(const PlaneContactSetup& setup, const PlaneRegion& regi
                                state.velocity_world.head<2>(), omega);
   k.velocity_world.z() = state.velocity_world.z();
   const double normal_velocity = k.velocity_world.z() + omega.cross(k.offset_world).z();
-  if (!(std::abs(normal_velocity) <= options.normal_velocity_tolerance_m_s)) {
+  if (!(std::abs(normal_velocity) <= options.normal_velocity_tolerance_mps)) {
     throw InvalidArgument("state", "contact start state: normal velocity of the contact point is " +
                                        format_value(normal_velocity) + " m/s, must be within +/-" +
-                                       format_value(options.normal_velocity_tolerance_m_s) +
+                                       format_value(options.normal_velocity_tolerance_mps) +
                                        " m/s (an impact or a flight, not a sustained contact)");
   }
   const Vector3 contact_point = k.position_world + k.offset_world;

@@ -31,7 +31,7 @@ void validate_nonsmooth_options(const NonsmoothContactOptions& o) {
   require_positive("nonsmooth/contact_margin_m", o.contact_margin_m);
   require_positive("nonsmooth/separation_time_s", o.separation_time_s);
   require_positive("nonsmooth/plane_margin_m", o.plane_margin_m);
-  require_positive("nonsmooth/rest_speed_m_s", o.rest_speed_m_s);
+  require_positive("nonsmooth/rest_speed_mps", o.rest_speed_mps);
   require_positive("nonsmooth/rest_time_s", o.rest_time_s);
   require_positive("nonsmooth/keep_margin_m", o.keep_margin_m);
   if (o.step_s > 0.01) {
@@ -115,7 +115,7 @@ NonsmoothIsland::Lattice NonsmoothIsland::next_lattice() {
     const Eigen::Vector3d omega =
         members_[i].setup.model.angular_velocity_world(s.orientation, s.angular_momentum_world);
     const double rim_speed = omega.norm() * members_[i].board.lens().half_width();
-    const bool calm = s.velocity_world.norm() <= o.rest_speed_m_s && rim_speed <= o.rest_speed_m_s;
+    const bool calm = s.velocity_world.norm() <= o.rest_speed_mps && rim_speed <= o.rest_speed_mps;
     next.calm_steps[i] = calm ? next.calm_steps[i] + 1 : 0;
   }
   std::vector<char> leaving(n, 0);

@@ -31,7 +31,7 @@ struct Throw {
   const char* name;
   const char* point;  // GTP name of the point it is thrown at (occupied: it lands on stones)
   double height_m;    // of the stone's lowest point above the set-down stones' pose
-  Vector3d velocity_m_s;
+  Vector3d velocity_mps;
   std::size_t most_woken;  // a bound well below a board-wide island's 361
 };
 
@@ -64,7 +64,7 @@ TEST_P(WorldFullBoardThrow, WakesWhatItPushesNeverGainsEnergyNeverOverlapsAndRes
   const std::size_t first_event = events.size();
   const vg::PlacementResult thrown =
       vg::drop_stone(world, vg::StoneColor::black, vg::parse_gtp_point(th.point), th.height_m, t,
-                     events, th.velocity_m_s);
+                     events, th.velocity_mps);
   const std::size_t n = world.stone_count();
   ASSERT_EQ(n, board + 1);
   facts.push_back(facts_of(world, world.index_of(thrown.id)));
@@ -76,7 +76,7 @@ TEST_P(WorldFullBoardThrow, WakesWhatItPushesNeverGainsEnergyNeverOverlapsAndRes
   double total = 0.0;
   for (std::size_t i = 0; i < n; ++i) total += (e[i] = energy_now(i));
   const double drop_j =
-      facts.back().mass_kg * (0.5 * th.velocity_m_s.squaredNorm() + kG * (th.height_m + 0.01));
+      facts.back().mass_kg * (0.5 * th.velocity_mps.squaredNorm() + kG * (th.height_m + 0.01));
   double lowest = total, worst_rise = 0.0;
   double worst_gap = std::numeric_limits<double>::infinity(), worst_board = worst_gap;
   std::vector<vg::RigidBodyState> previous;

@@ -74,7 +74,7 @@ struct PlaneContactOptions {
   double max_step_s = 5e-3;           // longest integrator step, s
   double initial_step_s = 1e-4;       // first trial step after a mode change, s
   double gap_tolerance_m = 1e-9;      // accepted |gap| of the initial state, m
-  double normal_velocity_tolerance_m_s = 1e-6;  // accepted |u_n| of the initial state, m/s
+  double normal_velocity_tolerance_mps = 1e-6;  // accepted |u_n| of the initial state, m/s
   // Optional: the signed distance (m) from the stone at a pose to the obstacles other than the
   // plane (the board's sides for a stone on the table), positive while none touches it. The
   // phase ends with `obstacle` where it reaches 0 (located like every event, on the dense
@@ -96,7 +96,7 @@ struct PlaneContactCounters {
 class PlaneContact {
  public:
   // `state` must touch the plane z = plane_height_m (|gap| <= options.gap_tolerance_m) with a
-  // normal velocity of the contact point within options.normal_velocity_tolerance_m_s, and its
+  // normal velocity of the contact point within options.normal_velocity_tolerance_mps, and its
   // contact point inside `region`; the residual normal velocity is removed by a plastic impulse
   // (energy can only fall), and the clearance (if given) must be positive. Throws
   // InvalidArgument naming what is wrong.

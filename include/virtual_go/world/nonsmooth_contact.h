@@ -9,7 +9,7 @@
 //   plane      exactly one contact is left, it carries load, and it is the top face or the table
 //              with the contact point inside its region by plane_margin_m: the exact plane model
 //              takes over;
-//   rest       every speed stayed below rest_speed_m_s for rest_time_s (then v = L = 0 exactly);
+//   rest       every speed stayed below rest_speed_mps for rest_time_s (then v = L = 0 exactly);
 //   separated  no contact carried load in the sub-step and the exact time of impact finds the
 //              free flight from there contact-free for separation_time_s.
 // With board_enabled false (a World whose board is switched off, whose island was dissolved by a

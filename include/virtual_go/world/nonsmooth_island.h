@@ -80,7 +80,7 @@
 // Ends, at a lattice point. A member with no other member within 10 margins leaves the island
 //   plane      when its one loaded contact is the top face or the table with the contact point
 //              plane_margin_m inside its region (the exact plane model takes over);
-//   rest       when it touches the board or the table and its speeds stayed below rest_speed_m_s
+//   rest       when it touches the board or the table and its speeds stayed below rest_speed_mps
 //              for rest_time_s (velocities exactly 0);
 //   separated  when none of its contacts carried load, the exact time of impact finds its free
 //              flight contact-free of the board for separation_time_s, and no other member can
@@ -121,7 +121,7 @@ struct NonsmoothContactOptions {
   // a hysteresis against switching back and forth at the board's edge.
   double plane_margin_m = 1e-5;
   // Rest: the centre's speed and the rim's speed |omega| a below this (m/s) ...
-  double rest_speed_m_s = 1e-5;
+  double rest_speed_mps = 1e-5;
   // ... for this long (s).
   double rest_time_s = 0.01;
   int max_sweeps = 32;  // Gauss-Seidel sweeps over the contacts' velocities per sub-step
