@@ -24,10 +24,7 @@ void require_on_grid(const char* what, GoPoint p) {
 }
 
 void require_go_board(const BoardGeometry& board) {
-  if (board.lines != kGoLines) {
-    throw InvalidArgument(
-        "board", "board: Go points need 19 lines, the board has " + std::to_string(board.lines));
-  }
+  if (!has_go_points(board)) throw InvalidArgument("board", "board: " + no_go_points_reason(board));
 }
 
 // The index of the line nearest to offset d (m) from the centre line, lines `spacing` m apart, or
@@ -41,6 +38,13 @@ int nearest_line(double d, double spacing) {
 }
 
 }  // namespace
+
+bool has_go_points(const BoardGeometry& board) { return board.lines == kGoLines; }
+
+std::string no_go_points_reason(const BoardGeometry& board) {
+  return "Go points need " + std::to_string(kGoLines) + " lines, the board has " +
+         std::to_string(board.lines);
+}
 
 bool is_on_grid(GoPoint p) {
   return p.column >= 0 && p.column < kGoLines && p.row >= 0 && p.row < kGoLines;

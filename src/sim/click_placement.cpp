@@ -25,10 +25,9 @@ ClickOutcome ClickPlacement::click(StoneSimulation& sim, const Eigen::Vector3d& 
                   " places nothing: there is no board (~board/enabled is false)";
     return out;
   }
-  if (world->board.lines != kGoLines) {
-    out.message = "click at " + millimetres(position_world) + " places nothing: Go points need " +
-                  std::to_string(kGoLines) + " lines, the board has " +
-                  std::to_string(world->board.lines);
+  if (!has_go_points(world->board)) {
+    out.message = "click at " + millimetres(position_world) +
+                  " places nothing: " + no_go_points_reason(world->board);
     return out;
   }
   const BoardGeometry& board = world->board;

@@ -88,10 +88,8 @@ std::string StoneSimulation::place(const PlaceRequest& request, std::string& ans
   change.color = color;
   std::optional<SetDownPlan> set_down;  // a set-down's plan, checked for room
   if (!request.point.empty()) {
-    if (world_->config().board.lines != kGoLines) {
-      throw InvalidArgument("point", "point: Go points need a board of " +
-                                         std::to_string(kGoLines) + " lines, this one has " +
-                                         std::to_string(world_->config().board.lines) +
+    if (!has_go_points(world_->config().board)) {
+      throw InvalidArgument("point", "point: " + no_go_points_reason(world_->config().board) +
                                          " (give a pose instead)");
     }
     change.point = parse_gtp_point(request.point);
@@ -167,7 +165,7 @@ std::string StoneSimulation::stone_at(GoPoint point) const {
   for (auto it = pending_.rbegin(); it != pending_.rend(); ++it) {
     if (it->reason == EventReason::place && it->point && *it->point == point) return it->name;
   }
-  if (world_->config().board.lines != kGoLines) return "";
+  if (!has_go_points(world_->config().board)) return "";
   const BoardGeometry& board = world_->config().board;
   const Eigen::Vector3d at = go_point_world(board, point);
   const std::vector<std::string> present = names_after_pending();

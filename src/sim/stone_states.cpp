@@ -10,8 +10,7 @@ std::vector<StoneStateEntry> stone_states(const StoneSimulation& sim) {
   e.name = sim.stone_name(0);
   e.color = sim.config().color;
   const std::optional<WorldConfig>& world = sim.world_config();
-  // Go points are defined for the 19-line board only (go/go_point.h).
-  if (world && world->board_enabled && world->board.lines == kGoLines) {
+  if (world && world->board_enabled && has_go_points(world->board)) {
     e.point = nearest_go_point_name(world->board, sim.output().position_world);
   }
   e.width_m = stone.shape.width();
@@ -29,7 +28,7 @@ std::vector<StoneStateEntry> stone_states(const StoneSimulation& sim) {
     s.name = p.name;
     s.color = stone_color_name(p.color);
     s.output = state_output(body.model, w.state(p.id));
-    if (world->board.lines == kGoLines) {
+    if (has_go_points(world->board)) {
       s.point = nearest_go_point_name(world->board, s.output.position_world);
     }
     s.width_m = body.shape.width();

@@ -35,6 +35,12 @@ struct GoPoint {
   }
 };
 
+// Whether Go points are defined on this board: only on one of kGoLines lines. The one test of
+// that fact; no_go_points_reason says why not, for every caller's message.
+bool has_go_points(const BoardGeometry& board);
+// "Go points need 19 lines, the board has 13" (no field prefix).
+std::string no_go_points_reason(const BoardGeometry& board);
+
 // Both indices in 0 .. kGoLines-1.
 bool is_on_grid(GoPoint point);
 // row * 19 + column, 0 .. 360, for arrays of the board's points; the point must be on the grid.
