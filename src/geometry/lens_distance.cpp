@@ -57,11 +57,16 @@ Eigen::Vector3d lens_support_world(const LensGeometry& lens, const LensPose& pos
   }
 }
 
+double lens_gap_value_along(const LensGeometry& lens, const LensPose& pose,
+                            const Eigen::Vector3d& n, double support_m) {
+  return n.dot(pose.center_world) - lens.reach(pose.axis_world.dot(n)) - support_m;
+}
+
 LensContact lens_gap_along(const LensGeometry& lens, const LensPose& pose, const Eigen::Vector3d& n,
                            double support_m) {
   LensContact c;
   c.normal_world = n;
-  c.gap_m = n.dot(pose.center_world) - lens.reach(pose.axis_world.dot(n)) - support_m;
+  c.gap_m = lens_gap_value_along(lens, pose, n, support_m);
   c.point_world = lens_support_world(lens, pose, n, &c.part);
   return c;
 }

@@ -115,6 +115,10 @@ BoardContact BoardDistance::table(const LensPose& pose) const {
   return c;
 }
 
+double BoardDistance::table_gap(const LensPose& pose) const {
+  return lens_gap_value_along(lens_, pose, Eigen::Vector3d::UnitZ(), -thickness_);
+}
+
 BoardContact BoardDistance::box(const LensPose& pose) const {
   const Eigen::Vector3d& x = pose.center_world;
   const Eigen::Vector3d& b = pose.axis_world;
@@ -133,7 +137,19 @@ BoardContact BoardDistance::box(const LensPose& pose) const {
       best.feature = feature;
     }
   };
-  for (int i = 0; i < 4; ++i) consider(side_normal(i), {BoardFeatureKind::side_face, i});
+  // A side face is a face like the top one, so it replaces the best only with a larger gap: its
+  // support point (the dearer part) is needed only then. On the board's interior none does, and
+  // n . x - support bounds its gap from above (reach >= 0; rounding is monotone), so most faces
+  // need not even their reach.
+  for (int i = 0; i < 4; ++i) {
+    const Eigen::Vector3d n = side_normal(i);
+    const double support = box_support(n);
+    if (n.dot(x) - support <= best.lens.gap_m) continue;
+    if (lens_gap_value_along(lens_, pose, n, support) > best.lens.gap_m) {
+      best.lens = lens_gap_along(lens_, pose, n, support);
+      best.feature = {BoardFeatureKind::side_face, i};
+    }
+  }
 
   // Which Voronoi regions of the box (outside it: per coordinate below / within / above the
   // box's range) the lens's axis-aligned bounding box reaches; the lens extends reach(b_k)
@@ -174,8 +190,8 @@ BoardContact BoardDistance::box(const LensPose& pose) const {
 
 BoardContact BoardDistance::nearest(const LensPose& pose) const {
   const BoardContact on_box = box(pose);
-  const BoardContact on_table = table(pose);
-  return on_table.lens.gap_m < on_box.lens.gap_m ? on_table : on_box;
+  // The table's support point only when the table is nearer (above the board it never is).
+  return table_gap(pose) < on_box.lens.gap_m ? table(pose) : on_box;
 }
 
 BoardContact BoardDistance::feature(const LensPose& pose, const BoardFeature& f) const {

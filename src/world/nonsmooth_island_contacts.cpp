@@ -63,22 +63,29 @@ void NonsmoothIsland::project(std::vector<RigidBodyState>& s, std::vector<Member
       if (!lattice_.active[i] || !members_[i].board_enabled) continue;
       for (int k = 0; k < kMaxCorrections; ++k) {
         const LensPose pose = lens_pose(s[i]);
-        const BoardContact box = members_[i].board.box(pose), table = members_[i].board.table(pose);
-        const BoardContact& deeper = table.lens.gap_m < box.lens.gap_m ? table : box;
+        // Only gaps and normals are needed here: the table's normal is +z, so its witness point
+        // (the dearer part) is never computed.
+        const BoardContact box = members_[i].board.box(pose);
+        const double table_gap_m = members_[i].board.table_gap(pose);
+        const bool table_deeper = table_gap_m < box.lens.gap_m;
+        const double deeper_gap_m = table_deeper ? table_gap_m : box.lens.gap_m;
+        const Eigen::Vector3d deeper_normal =
+            table_deeper ? Eigen::Vector3d::UnitZ() : box.lens.normal_world;
         if (k == 0) {
           supports[i] = 0;
-          for (const BoardContact* c : {&box, &table}) {
-            if (c->lens.gap_m <= options_.contact_margin_m) {
-              support_normal[2 * i + supports[i]++] = c->lens.normal_world;
-            }
+          if (box.lens.gap_m <= options_.contact_margin_m) {
+            support_normal[2 * i + supports[i]++] = box.lens.normal_world;
+          }
+          if (table_gap_m <= options_.contact_margin_m) {
+            support_normal[2 * i + supports[i]++] = Eigen::Vector3d::UnitZ();
           }
         }
-        if (deeper.lens.gap_m >= 0.0) break;
+        if (deeper_gap_m >= 0.0) break;
         if (commit) {
-          counters_.deepest_overlap_m = std::max(counters_.deepest_overlap_m, -deeper.lens.gap_m);
+          counters_.deepest_overlap_m = std::max(counters_.deepest_overlap_m, -deeper_gap_m);
           ++counters_.projections;
         }
-        s[i].position_world += (kCorrectionSlackM - deeper.lens.gap_m) * deeper.lens.normal_world;
+        s[i].position_world += (kCorrectionSlackM - deeper_gap_m) * deeper_normal;
         mc[i].loaded = true;
         corrected = true;
       }
@@ -253,10 +260,14 @@ bool NonsmoothIsland::gather(const std::vector<RigidBodyState>& s, std::vector<M
     mc[i].board = mc[i].stones = mc[i].near = 0;
     if (!lattice_.active[i] || !members_[i].board_enabled) continue;
     const LensPose pose = lens_pose(s[i]);
-    for (const BoardContact& c : {members_[i].board.box(pose), members_[i].board.table(pose)}) {
+    const BoardDistance& board = members_[i].board;
+    const auto take = [&](const BoardContact& c) {
       if (c.lens.gap_m < -kGapToleranceM) clear = false;
       if (c.lens.gap_m <= options_.contact_margin_m) mc[i].contact[mc[i].board++] = c;
-    }
+    };
+    take(board.box(pose));
+    // The table's witness point only when it is a contact (never while above the board).
+    if (board.table_gap(pose) <= options_.contact_margin_m) take(board.table(pose));
   }
   for (std::size_t a = 0; a < n; ++a) {
     if (!lattice_.active[a]) continue;

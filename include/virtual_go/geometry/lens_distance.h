@@ -19,8 +19,8 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
-#include "virtual_go/geometry/lens_geometry.h"
 #include "virtual_go/body/rigid_body_state.h"
+#include "virtual_go/geometry/lens_geometry.h"
 
 namespace virtual_go {
 
@@ -48,6 +48,10 @@ Eigen::Vector3d lens_support_world(const LensGeometry& lens, const LensPose& pos
 // {p : n . p = h0} with the stone on the +n side this is the exact signed distance (support h0).
 LensContact lens_gap_along(const LensGeometry& lens, const LensPose& pose,
                            const Eigen::Vector3d& normal_world, double support_m);
+// Its gap alone (lens_gap_along(...).gap_m bit for bit) without the support point, which costs
+// more: for a caller that compares candidates first and needs the point of the winner only.
+double lens_gap_value_along(const LensGeometry& lens, const LensPose& pose,
+                            const Eigen::Vector3d& normal_world, double support_m);
 
 // Exact signed distance to a point (closed form): a cap's sphere when its nearest point lies on
 // the cap, else the nearest rim point; inside, the nearer of the two spheres.

@@ -55,6 +55,8 @@ class BoardDistance {
   BoardContact nearest(const RigidBodyState& state) const { return nearest(lens_pose(state)); }
   BoardContact box(const LensPose& pose) const;
   BoardContact table(const LensPose& pose) const;
+  // table(pose).lens.gap_m bit for bit, without the witness point (the normal is +z).
+  double table_gap(const LensPose& pose) const;
   // The distance to one feature's carrier (its whole plane, line or point), closed form; equal
   // to the board's distance when that feature holds the nearest board point.
   BoardContact feature(const LensPose& pose, const BoardFeature& feature) const;
