@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "bench.h"
+#include "output_folder.h"
 #include "virtual_go/body/rigid_body.h"
 #include "virtual_go/common/validation.h"
 #include "virtual_go/flight/exact_motion.h"
@@ -480,6 +481,7 @@ int main(int argc, char** argv) {
     }
   }
 
+  if (!vg_bench::make_output_folder("work_precision", o.out)) return 1;
   vg_bench::init_peers();
   std::vector<std::string> notes;
   std::vector<std::unique_ptr<Method>> methods;

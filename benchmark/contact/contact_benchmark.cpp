@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <map>
 
+#include "../output_folder.h"
 #include "contact_method.h"
 #include "contact_report.h"
 #include "trajectory_metrics.h"
@@ -242,6 +243,7 @@ int main(int argc, char** argv) {
   }
 
   if (o.self_check) return self_check(o);
+  if (!vg_bench::make_output_folder("contact_benchmark", o.out)) return 1;
   init_contact_peers();
   std::vector<std::unique_ptr<ContactMethod>> all;
   all.push_back(make_ours_contact());

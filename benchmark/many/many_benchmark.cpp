@@ -22,6 +22,7 @@
 #include <sstream>
 
 #include "../contact/settings_format.h"
+#include "../output_folder.h"
 #include "many_method.h"
 
 namespace vg_bench {
@@ -370,14 +371,7 @@ std::string time_or_never(double t, bool has_sleep) {
 }
 
 int run(const Options& o) {
-  // The output folder is made here: without it every file would fail to open silently.
-  std::error_code made;
-  std::filesystem::create_directories(o.out, made);
-  if (made) {
-    std::cerr << "many_benchmark: --out " << o.out << ": cannot create the folder ("
-              << made.message() << ")\n";
-    return 1;
-  }
+  if (!make_output_folder("many_benchmark", o.out)) return 1;
   init_many_peers();
   std::vector<std::unique_ptr<ManyMethod>> methods;
   std::vector<std::unique_ptr<ManyMethod>> all;
