@@ -55,6 +55,10 @@ void NonsmoothIsland::project(std::vector<RigidBodyState>& s, std::vector<Member
   // The board normals each member lies on (within the margin after its board corrections).
   std::vector<int> supports(n, 0);
   std::vector<Eigen::Vector3d> support_normal(2 * n);
+  // Corrections only translate, so each member's axis is the same through every sweep.
+  std::vector<Eigen::Vector3d> axis_world(n);
+  for (std::size_t i = 0; i < n; ++i) axis_world[i] = lens_pose(s[i]).axis_world;
+  const auto pose_of = [&](std::size_t i) { return LensPose{s[i].position_world, axis_world[i]}; };
   for (sweeps = 0; sweeps < kMaxProjectionSweeps; ++sweeps) {
     bool corrected = false;
     // The board and the table: translate along the deeper contact's normal (their normals are
@@ -62,7 +66,7 @@ void NonsmoothIsland::project(std::vector<RigidBodyState>& s, std::vector<Member
     for (std::size_t i = 0; i < n; ++i) {
       if (!lattice_.active[i] || !members_[i].board_enabled) continue;
       for (int k = 0; k < kMaxCorrections; ++k) {
-        const LensPose pose = lens_pose(s[i]);
+        const LensPose pose = pose_of(i);
         // Only gaps and normals are needed here: the table's normal is +z, so its witness point
         // (the dearer part) is never computed.
         const BoardContact box = members_[i].board.box(pose);
@@ -99,7 +103,7 @@ void NonsmoothIsland::project(std::vector<RigidBodyState>& s, std::vector<Member
             apart_by_bounds(members_[a].board, s[a], members_[b].board, s[b], 0.0)) {
           continue;
         }
-        const LensPose pa = lens_pose(s[a]), pb = lens_pose(s[b]);
+        const LensPose pa = pose_of(a), pb = pose_of(b);
         if (apart_along_last_normal(a, pa, b, pb, 0.0)) continue;
         const LensPairContact c = pair_contact(
             members_[a].board.lens(), pa, members_[b].board.lens(), pb,
@@ -256,10 +260,14 @@ bool NonsmoothIsland::gather(const std::vector<RigidBodyState>& s, std::vector<M
   const std::size_t n = s.size();
   bool clear = true;
   pairs.clear();
+  std::vector<LensPose> poses(n);  // each member's once, not once per pair
+  for (std::size_t i = 0; i < n; ++i) {
+    if (lattice_.active[i]) poses[i] = lens_pose(s[i]);
+  }
   for (std::size_t i = 0; i < n; ++i) {
     mc[i].board = mc[i].stones = mc[i].near = 0;
     if (!lattice_.active[i] || !members_[i].board_enabled) continue;
-    const LensPose pose = lens_pose(s[i]);
+    const LensPose& pose = poses[i];
     const BoardDistance& board = members_[i].board;
     const auto take = [&](const BoardContact& c) {
       if (c.lens.gap_m < -kGapToleranceM) clear = false;
@@ -278,7 +286,7 @@ bool NonsmoothIsland::gather(const std::vector<RigidBodyState>& s, std::vector<M
           apart_by_bounds(members_[a].board, s[a], members_[b].board, s[b], keep_m)) {
         continue;
       }
-      const LensPose pa = lens_pose(s[a]), pb = lens_pose(s[b]);
+      const LensPose &pa = poses[a], &pb = poses[b];
       if (apart_along_last_normal(a, pa, b, pb, keep_m)) continue;
       const LensPairContact c = pair_contact(
           members_[a].board.lens(), pa, members_[b].board.lens(), pb,
