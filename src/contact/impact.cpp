@@ -86,6 +86,7 @@ Impact resolve_impact(const MotionModel& model, const RigidBodyState& before,
   result.normal_velocity_after_mps = result.contact_velocity_after_world.dot(n);
   result.stuck = stuck;
   result.slip_steps = process.steps();
+  result.straight_slip = process.straight_slip();
   result.frictionless_fallback = process.frictionless_fallback();
   return result;
 }

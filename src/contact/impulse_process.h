@@ -10,6 +10,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <array>
 #include <boost/math/tools/roots.hpp>
 #include <boost/numeric/odeint.hpp>
@@ -98,7 +99,10 @@ class ImpulseProcess {
   ImpulseProcess(const Eigen::Matrix3d& k, const Eigen::Vector3d& u0, double mu, double e,
                  const ImpactOptions& options)
       : k_(k), u0_(u0), mu_(mu), e_(e), options_(options) {
-    if (mu_ > 0.0) classify_zero_slip();
+    if (mu_ > 0.0) {
+      classify_zero_slip();
+      bound_slip_turn();
+    }
   }
 
   void run() {
@@ -196,6 +200,13 @@ class ImpulseProcess {
       // plastic full stop in closed form from here (the end the integration would reach).
       if (sticks_before_compression_ends()) return;
       const Eigen::Vector2d dir = ut / s;
+      // The slip's direction provably stays constant to the tolerance until the impact ends:
+      // the rest is a straight line, closed form.
+      if (straight_to_tolerance(s, remaining_impulse_bound(u.z()))) {
+        straight_slip_ = true;
+        advance_linear(-mu_ * dir, kInfinity);
+        return;
+      }
       const Eigen::Vector2d accel =
           k_.topRightCorner<2, 1>() - mu_ * k_.topLeftCorner<2, 2>() * dir;
       const double s_rate = dir.dot(accel);
@@ -221,6 +232,18 @@ class ImpulseProcess {
         continue;
       }
       h = std::min(h, 0.9 * to_zero);  // approach u_t = 0 geometrically, never through it
+      // A plastic impact: aim the step at the point where the rest of compression is short enough
+      // to be straight to the tolerance (the check above then ends it in closed form on the next
+      // pass, instead of a search for the crossing on re-steps): u_n = -r L / 2 by u_n's present
+      // rate, L the straight length with delta = tolerance (straight_to_tolerance, s_min ~ s).
+      if (e_ == 0.0 && !compressed_ && options_.straight_slip && turn_rate_ > 0.0 &&
+          normal_rate_min_ > 0.0) {
+        const double rate = k_(2, 2) + k_.bottomLeftCorner<1, 2>().dot(-mu_ * dir);
+        const double straight = std::sqrt(2.0 * s * options_.tolerance * normal_rate_min_ /
+                                          (mu_ * turn_rate_ * std::max(normal_rate_min_, k_norm_)));
+        const double aim = (-0.5 * normal_rate_min_ * straight - u.z()) / rate;
+        if (aim > 0.0) h = std::min(h, aim);
+      }
       const SlipState y_old{pt_.x(), pt_.y(), w_};
       const double p_old = p_;
       SlipState y = y_old;
@@ -266,6 +289,8 @@ class ImpulseProcess {
   bool stuck() const { return stuck_; }
   // True when run() took the plastic full stop in closed form (no slip integration).
   bool closed_form_stop() const { return closed_form_stop_; }
+  // True when run() ended (part of) the slip as a straight line (straight_to_tolerance).
+  bool straight_slip() const { return straight_slip_; }
   bool stuck_at_compression() const { return stuck_at_compression_; }
   int steps() const { return steps_; }
   bool frictionless_fallback() const { return fallback_; }
@@ -348,12 +373,8 @@ class ImpulseProcess {
   // short as soon as the bound holds.
   bool sticks_before_compression_ends() {
     if (e_ != 0.0 || !can_stick_) return false;
-    const Eigen::Matrix2d ktt = k_.topLeftCorner<2, 2>();
-    const double ktn = k_.topRightCorner<2, 1>().norm();
-    const double half_trace = 0.5 * (ktt(0, 0) + ktt(1, 1));
-    const double half_diff = 0.5 * (ktt(0, 0) - ktt(1, 1));
-    const double lambda_min = half_trace - std::hypot(half_diff, ktt(0, 1));
-    const double r = mu_ * lambda_min - ktn;
+    const double ktn = ktn_norm_;
+    const double r = mu_ * ktt_lambda_min_ - ktn;
     const Eigen::Vector3d u = velocity(p_, pt_);
     const double s0 = u.head<2>().norm(), un0 = u.z();
     if (!(r > 0.0) || !(un0 < 0.0)) return false;
@@ -368,6 +389,62 @@ class ImpulseProcess {
     pt_compression_ = pt_;
     closed_form_stop_ = true;
     return true;
+  }
+
+  // K_tt's eigenvalues and the rates that bound how fast the slip can turn and slow
+  // (straight_to_tolerance, sticks_before_compression_ends).
+  void bound_slip_turn() {
+    const Eigen::Matrix2d ktt = k_.topLeftCorner<2, 2>();
+    ktn_norm_ = k_.topRightCorner<2, 1>().norm();
+    const double half_trace = 0.5 * (ktt(0, 0) + ktt(1, 1));
+    const double half_spread = std::hypot(0.5 * (ktt(0, 0) - ktt(1, 1)), ktt(0, 1));
+    ktt_lambda_min_ = half_trace - half_spread;
+    turn_rate_ = ktn_norm_ + mu_ * half_spread;
+    slow_rate_ = ktn_norm_ + mu_ * (half_trace + half_spread);
+    normal_rate_min_ = k_(2, 2) - mu_ * ktn_norm_;
+    k_norm_ = k_.trace();
+  }
+
+  // An upper bound of the normal impulse from here (normal velocity un, work w_) to the end of
+  // the impact, along any slip direction: u_n rises at du_n/dp = K_nn - mu K_nt.d >= r :=
+  // K_nn - mu |K_tn| (Stronge, "Impact Mechanics", 2000, ch. 5: the impulse-space process), so
+  // compression ends within -u_n / r; its work W_c is at least W - u_n^2 / (2 r) (u_n lies between
+  // u_n + r q and 0); restitution needs the work e*^2 |W_c| with u_n >= r q, so it ends within
+  // sqrt(2 e*^2 |W_c| / r); once compressed, the work left R within sqrt(2 R / r).
+  double remaining_impulse_bound(double un) const {
+    const double r = normal_rate_min_;
+    if (!(r > 0.0)) return kInfinity;
+    if (compressed_) return std::sqrt(2.0 * std::max(0.0, w_target_ - w_) / r);
+    const double compression = std::max(0.0, -un) / r;
+    const double work_c = std::abs(w_) + 0.5 * un * un / r;
+    return compression + e_ * std::sqrt(2.0 * work_c / r);
+  }
+
+  // True when the slip from here (speed s = |u_t| > 0, direction d0) keeps its direction to the
+  // tolerance for the next `length` of normal impulse, so that the slip is the straight line
+  // u(p) = u + p K (-mu d0, 1) to the tolerance (advance_linear). Bound (Stronge 2000, ch. 5,
+  // for the process du/dp = K (-mu d, 1), d = u_t / |u_t|): with a = du_t/dp = K_tn - mu K_tt d,
+  //  - the slip speed falls at most at ds/dp = d.a >= -(|K_tn| + mu lmax(K_tt)) =: -c_s, so
+  //    s >= s_min := s - c_s length > 0 throughout: the slip never stops;
+  //  - the direction turns at |dd/dp| = |(1 - d d^T) a| / s <= c_t / s_min with c_t :=
+  //    |K_tn| + mu (lmax - lmin) / 2 (the part of K_tt d across d is at most half K_tt's spread),
+  //    so |d(q) - d0| <= c_t q / s_min;
+  //  - the tangential impulse P_t = -mu int d dq then leaves the line by at most
+  //    delta := mu c_t length^2 / (2 s_min); the velocity by |K| delta <= tr(K) delta; the work
+  //    W = int u_n dq by |K_tn| length delta; the end of compression (u_n = 0, crossed at a rate
+  //    >= r = K_nn - mu |K_tn|) moves by tr(K) delta / r; the end of restitution by the work's
+  //    deviation over u_n there, as it would with the integration's own error.
+  // All below the tolerance: the line is as accurate as the integration. It cannot add energy:
+  // dE = W - mu int u_t.d0 dq, with W <= 0 at the end and u_t.d0 >= s_min > 0 on the line.
+  bool straight_to_tolerance(double s, double length) const {
+    if (!options_.straight_slip || !(normal_rate_min_ > 0.0) || !(length < kInfinity)) {
+      return false;
+    }
+    const double s_min = s - slow_rate_ * length;
+    if (!(s_min > 0.0)) return false;
+    const double delta = mu_ * turn_rate_ * length * length / (2.0 * s_min);
+    const double spread = std::max({1.0, k_norm_ / normal_rate_min_, ktn_norm_ * length});
+    return delta * spread <= options_.tolerance;
   }
 
   // The fallback: the impact goes on from where it is along K n (no tangential impulse) to the
@@ -452,6 +529,10 @@ class ImpulseProcess {
   int steps_ = 0, rejected_ = 0;
   bool fallback_ = false;
   bool closed_form_stop_ = false;
+  bool straight_slip_ = false;
+  // bound_slip_turn(): |K_tn|, lmin(K_tt), the bounds c_t, c_s, r of straight_to_tolerance, tr(K).
+  double ktn_norm_ = 0.0, ktt_lambda_min_ = 0.0, turn_rate_ = 0.0, slow_rate_ = 0.0;
+  double normal_rate_min_ = 0.0, k_norm_ = 0.0;
 };
 
 // The law only dissipates; the numerical slip integration and the snap onto u_t = 0 can leave

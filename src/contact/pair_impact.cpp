@@ -78,6 +78,7 @@ PairImpact resolve_pair_impact(const MotionModel& model_a, const RigidBodyState&
   result.normal_velocity_after_mps = result.contact_velocity_after_world.dot(n);
   result.stuck = process.stuck();
   result.slip_steps = process.steps();
+  result.straight_slip = process.straight_slip();
   result.frictionless_fallback = process.frictionless_fallback();
   return result;
 }

@@ -39,6 +39,9 @@ struct ImpactOptions {
   // (closed form, Impact::frictionless_fallback): the normal work still ends at (1 - e*^2) W_c,
   // so the impact still cannot add energy; it only dissipates less than the law would.
   int max_steps = 100000;
+  // Take a slip whose direction provably stays constant to `tolerance` as a straight line, closed
+  // form (docs/physics.md, "Impact"); false integrates it always (tests compare the two).
+  bool straight_slip = true;
 };
 
 struct Impact {
@@ -55,6 +58,7 @@ struct Impact {
   bool stuck = false;                  // the contact point's slip ended (u_t = 0) and stayed so
   bool sustained = false;              // Zeno cut-off applied: the contact stays (u_n+ = 0)
   int slip_steps = 0;                  // accepted steps of the slip integration
+  bool straight_slip = false;          // a slip was ended as a straight line (ImpactOptions)
   bool frictionless_fallback = false;  // the slip integration could not finish (ImpactOptions)
 };
 

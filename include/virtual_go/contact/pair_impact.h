@@ -36,6 +36,7 @@ struct PairImpact {
   bool separating = false;             // u_n- >= 0: no impulse, states unchanged
   bool stuck = false;                  // the relative slip ended (u_t = 0) and stayed so
   int slip_steps = 0;                  // accepted steps of the slip integration
+  bool straight_slip = false;          // a slip was ended as a straight line (ImpactOptions)
   bool frictionless_fallback = false;  // the slip integration could not finish (ImpactOptions)
 };
 
