@@ -263,6 +263,12 @@ class ImpulseProcess {
         continue;
       }
       ++steps_;
+      // Closing on u_t = 0 the step the tolerance allows shrinks with the slip speed (the
+      // direction turns at a rate ~ 1 / s): scale the controller's proposal by the speed's fall,
+      // or it grows each accepted step and every other try is rejected (measured: 297 k
+      // rejections against 1.03 M accepted steps in the cluster scene).
+      const double s_new = u_new.head<2>().norm();
+      if (s_new < s) h *= s_new / s;
       if (!compressed_ && u_new.z() >= 0.0) {
         SlipState y_at;
         const double p_at = locate(normal_velocity, y_old, p_old, y, p, &y_at);
