@@ -239,8 +239,9 @@ class ImpulseProcess {
       if (e_ == 0.0 && !compressed_ && options_.straight_slip && turn_rate_ > 0.0 &&
           normal_rate_min_ > 0.0) {
         const double rate = k_(2, 2) + k_.bottomLeftCorner<1, 2>().dot(-mu_ * dir);
-        const double straight = std::sqrt(2.0 * s * options_.tolerance * normal_rate_min_ /
-                                          (mu_ * turn_rate_ * std::max(normal_rate_min_, k_norm_)));
+        const double straight =
+            std::sqrt(2.0 * s * options_.tolerance * normal_rate_min_ /
+                      (mu_ * turn_rate_ * std::max(normal_rate_min_, k_trace_)));
         const double aim = (-0.5 * normal_rate_min_ * straight - u.z()) / rate;
         if (aim > 0.0) h = std::min(h, aim);
       }
@@ -408,7 +409,7 @@ class ImpulseProcess {
     turn_rate_ = ktn_norm_ + mu_ * half_spread;
     slow_rate_ = ktn_norm_ + mu_ * (half_trace + half_spread);
     normal_rate_min_ = k_(2, 2) - mu_ * ktn_norm_;
-    k_norm_ = k_.trace();
+    k_trace_ = k_.trace();
   }
 
   // An upper bound of the normal impulse from here (normal velocity un, work w_) to the end of
@@ -449,7 +450,7 @@ class ImpulseProcess {
     const double s_min = s - slow_rate_ * length;
     if (!(s_min > 0.0)) return false;
     const double delta = mu_ * turn_rate_ * length * length / (2.0 * s_min);
-    const double spread = std::max({1.0, k_norm_ / normal_rate_min_, ktn_norm_ * length});
+    const double spread = std::max({1.0, k_trace_ / normal_rate_min_, ktn_norm_ * length});
     return delta * spread <= options_.tolerance;
   }
 
@@ -538,7 +539,7 @@ class ImpulseProcess {
   bool straight_slip_ = false;
   // bound_slip_turn(): |K_tn|, lmin(K_tt), the bounds c_t, c_s, r of straight_to_tolerance, tr(K).
   double ktn_norm_ = 0.0, ktt_lambda_min_ = 0.0, turn_rate_ = 0.0, slow_rate_ = 0.0;
-  double normal_rate_min_ = 0.0, k_norm_ = 0.0;
+  double normal_rate_min_ = 0.0, k_trace_ = 0.0;
 };
 
 // The law only dissipates; the numerical slip integration and the snap onto u_t = 0 can leave
