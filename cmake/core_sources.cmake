@@ -39,6 +39,7 @@ set(VG_CORE_SOURCES
   src/contact/pair_time_of_impact.cpp
   src/contact/impact.cpp
   src/contact/pair_impact.cpp
+  src/contact/coulomb_plastic_impulse.cpp
   src/contact/simultaneous_impacts.cpp
   src/contact/plane_region.cpp
   src/contact/lens_on_plane.cpp

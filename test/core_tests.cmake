@@ -36,6 +36,7 @@ foreach(core_test
     contact/test_pair_time_of_impact
     contact/test_impact
     contact/test_pair_impact
+    contact/test_coulomb_plastic_impulse
     contact/test_simultaneous_impacts
     contact/test_plane_region
     contact/test_lens_on_plane

@@ -84,6 +84,12 @@ const Eigen::Matrix3d& SweepCompliances::board(std::size_t i, int k, const Motio
   return c.k;
 }
 
+Eigen::Matrix3d SweepCompliances::member_at(std::size_t i, const MotionModel& model,
+                                            const RigidBodyState& s,
+                                            const Eigen::Vector3d& point_world) {
+  return compliance(member(i, model, s), model, point_world);
+}
+
 const Eigen::Matrix3d& SweepCompliances::pair(std::size_t j, std::size_t a,
                                               const MotionModel& model_a, const RigidBodyState& s_a,
                                               std::size_t b, const MotionModel& model_b,

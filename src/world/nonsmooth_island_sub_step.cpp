@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "virtual_go/contact/coulomb_plastic_impulse.h"
 #include "virtual_go/contact/impact.h"
 #include "virtual_go/contact/pair_impact.h"
 #include "virtual_go/contact/time_of_impact.h"
@@ -123,9 +124,9 @@ NonsmoothIsland::Step NonsmoothIsland::sub_step(const Lattice& lattice_from, dou
       const bool held_b = shock && pressed(p.b, p.normal_world);
       if (held_a != held_b) {
         // The board holds the lower stone: the upper one meets it as a surface moving with the
-        // lower's contact point (the one-body impact in that frame: only K of the upper stone
-        // and the relative velocity enter). The lower stone takes the opposite impulse -P at the
-        // same point (momentum between the stones is kept), and at once its board contacts'
+        // lower's contact point (the one-body plastic impulse in that frame: only K of the upper
+        // stone and the relative velocity enter). The lower stone takes the opposite impulse -P at
+        // the same point (momentum between the stones is kept), and at once its board contacts'
         // plastic impulses (the board's part: the normal, and the tangential within mu N), so
         // the board takes only what its contacts can carry and the rest stays in the stones:
         // on a frictionless board the horizontal momentum is kept to round-off. Along the
@@ -133,23 +134,26 @@ NonsmoothIsland::Step NonsmoothIsland::sub_step(const Lattice& lattice_from, dou
         // once); what the board cannot carry the next sweep meets. The guard covers the energy.
         const std::size_t held = held_a ? p.a : p.b, moving = held_a ? p.b : p.a;
         const Eigen::Vector3d n = held_a ? p.normal_world : Eigen::Vector3d(-p.normal_world);
-        RigidBodyState relative = s[moving];
-        relative.velocity_world -=
+        const MotionModel& moving_model = members_[moving].setup.model;
+        const Eigen::Vector3d u_moving =
+            point_velocity_world(moving_model, s[moving], p.point_world) -
             point_velocity_world(members_[held].setup.model, s[held], p.point_world);
-        const Impact impact =
-            resolve_impact(members_[moving].setup.model, relative, p.point_world, n, stone_plastic_,
-                           members_[moving].setup.gravity_world);
-        s[moving].velocity_world += impact.state.velocity_world - relative.velocity_world;
-        s[moving].angular_momentum_world = impact.state.angular_momentum_world;
-        apply_impulse(members_[held].setup.model, s[held], p.point_world, -impact.impulse_world);
-        pair_sum[j] += held_a ? impact.impulse_world : Eigen::Vector3d(-impact.impulse_world);
+        const PlasticImpulse impulse = coulomb_plastic_impulse(
+            n, compliances.member_at(moving, moving_model, s[moving], p.point_world), u_moving,
+            stone_plastic_.friction);
+        apply_impulse(moving_model, s[moving], p.point_world, impulse.impulse_world);
+        apply_impulse(members_[held].setup.model, s[held], p.point_world, -impulse.impulse_world);
+        pair_sum[j] += held_a ? impulse.impulse_world : Eigen::Vector3d(-impulse.impulse_world);
+        if (commit && impulse.frictionless) ++counters_.frictionless_impulses;
         board_impulses(held, s, out.contacts, board_sum, compliances, commit);
       } else {
-        const PairImpact impact = resolve_pair_impact(ma, s[p.a], mb, s[p.b], p.point_world,
-                                                      p.normal_world, stone_plastic_);
-        s[p.a] = impact.state_a;
-        s[p.b] = impact.state_b;
-        pair_sum[j] += impact.impulse_world;
+        const PlasticImpulse impulse = coulomb_plastic_impulse(
+            p.normal_world, compliances.pair(j, p.a, ma, s[p.a], p.b, mb, s[p.b], p.point_world), u,
+            stone_plastic_.friction);
+        apply_impulse(mb, s[p.b], p.point_world, impulse.impulse_world);
+        apply_impulse(ma, s[p.a], p.point_world, -impulse.impulse_world);
+        pair_sum[j] += impulse.impulse_world;
+        if (commit && impulse.frictionless) ++counters_.frictionless_impulses;
       }
       acted = true;
       out.contacts[p.a].loaded = out.contacts[p.b].loaded = true;
@@ -286,10 +290,11 @@ bool NonsmoothIsland::board_impulses(std::size_t i, std::vector<RigidBodyState>&
     Eigen::Vector3d& sum = accumulated[2 * i + static_cast<std::size_t>(k)];
     const Eigen::Vector3d u = point_velocity_world(model, s[i], point);
     if (n.dot(u) < -kApproachToleranceMps) {
-      const Impact impact =
-          resolve_impact(model, s[i], point, n, material, members_[i].setup.gravity_world);
-      s[i] = impact.state;
-      sum += impact.impulse_world;
+      const PlasticImpulse impulse = coulomb_plastic_impulse(
+          n, compliances.board(i, k, model, s[i], point), u, material.friction);
+      apply_impulse(model, s[i], point, impulse.impulse_world);
+      sum += impulse.impulse_world;
+      if (commit && impulse.frictionless) ++counters_.frictionless_impulses;
     } else {
       if (!may_slip(n, u, sum, material.friction, kApproachToleranceMps)) continue;
       const Eigen::Vector3d p = friction_impulse(n, compliances.board(i, k, model, s[i], point), u,

@@ -26,14 +26,15 @@
 //      island's formation, on the states it is given, before any flight (contacts that close
 //      together close at one instant: the cradle's vanishing gaps). With e* = 0 there are none (the
 //      plastic impulses below are the same law). Then a plastic impulse at every contact within the
-//      margin that still approaches (board: resolve_impact with e* = 0; pair: resolve_pair_impact
-//      with e* = 0, both with Coulomb friction integrated through the impulse, so each impulse can
-//      only remove energy), Gauss-Seidel until none approaches (the board's contacts first; after 8
-//      plain sweeps a stone that a pair impulse would press into the board is held: the other
-//      meets it as a moving surface, it takes the opposite impulse and at once its board contacts'
-//      plastic impulses, so a stack converges at once instead of halving per sweep, and the board
-//      takes only what its contacts carry: momentum is kept along a frictionless board). A
-//      contact that no longer approaches but slips gets the friction its normal impulse of the
+//      margin that still approaches, by Moreau-Jean's local Coulomb law on the velocity after the
+//      impulse (contact/coulomb_plastic_impulse.h; board: the member's compliance, pair: K_A +
+//      K_B; frictionless where its Newton iteration finds no slip direction, counted), each
+//      impulse only removing energy, Gauss-Seidel until none approaches (the board's contacts
+//      first; after 8 plain sweeps a stone that a pair impulse would press into the board is held:
+//      the other meets it as a moving surface, it takes the opposite impulse and at once its board
+//      contacts' plastic impulses, so a stack converges at once instead of halving per sweep, and
+//      the board takes only what its contacts carry: momentum is kept along a frictionless board).
+//      A contact that no longer approaches but slips gets the friction its normal impulse of the
 //      sub-step allows (Coulomb: the contact's total tangential impulse within mu times its total
 //      normal impulse; each such impulse only removes energy), so that impulses at other contacts
 //      do not leave it sliding (a resting pile crept at ~0.2 g h without it);
@@ -167,8 +168,10 @@ struct NonsmoothCounters {
   double largest_energy_excess_j = 0.0;  // energy above the previous lattice state's left after
                                          // the guard (0 by construction; measured), J
   long obstacle_impulses = 0;            // of `impulses`, those against an obstacle (then it wakes)
-  long obstacle_projections = 0;         // of `projections`, those out of an obstacle
-  long obstacle_wakes = 0;  // obstacles woken (IslandOutcome::woken), counted once each
+  long frictionless_impulses = 0;  // of `impulses`, plastic ones whose slip direction was not found
+                                   // (contact/coulomb_plastic_impulse.h: frictionless)
+  long obstacle_projections = 0;   // of `projections`, those out of an obstacle
+  long obstacle_wakes = 0;         // obstacles woken (IslandOutcome::woken), counted once each
 };
 
 // One member: its lens against the board (BoardDistance carries the lens geometry), its mass
