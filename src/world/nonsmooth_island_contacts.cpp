@@ -59,12 +59,19 @@ void NonsmoothIsland::project(std::vector<RigidBodyState>& s, std::vector<Member
   std::vector<Eigen::Vector3d> axis_world(n);
   for (std::size_t i = 0; i < n; ++i) axis_world[i] = lens_pose(s[i]).axis_world;
   const auto pose_of = [&](std::size_t i) { return LensPose{s[i].position_world, axis_world[i]}; };
+  // A member's board check and a pair's check are functions of the poses alone (a pair's distance
+  // at the same poses is its memo's), so one that found no overlap is not repeated until a
+  // correction moves a member it involves: the same results as a full sweep, with less work.
+  std::vector<long> moves(n, 0), board_clear_at(n, -1);
+  std::vector<std::pair<long, long>> pair_clear_at(n * n, {-1, -1});
   for (sweeps = 0; sweeps < kMaxProjectionSweeps; ++sweeps) {
     bool corrected = false;
     // The board and the table: translate along the deeper contact's normal (their normals are
     // the separating directions, so one correction along one of them makes that gap zero).
     for (std::size_t i = 0; i < n; ++i) {
-      if (!lattice_.active[i] || !members_[i].board_enabled) continue;
+      if (!lattice_.active[i] || !members_[i].board_enabled || board_clear_at[i] == moves[i]) {
+        continue;
+      }
       for (int k = 0; k < kMaxCorrections; ++k) {
         const LensPose pose = pose_of(i);
         // Only gaps and normals are needed here: the table's normal is +z, so its witness point
@@ -84,12 +91,16 @@ void NonsmoothIsland::project(std::vector<RigidBodyState>& s, std::vector<Member
             support_normal[2 * i + supports[i]++] = Eigen::Vector3d::UnitZ();
           }
         }
-        if (deeper_gap_m >= 0.0) break;
+        if (deeper_gap_m >= 0.0) {
+          board_clear_at[i] = moves[i];
+          break;
+        }
         if (commit) {
           counters_.deepest_overlap_m = std::max(counters_.deepest_overlap_m, -deeper_gap_m);
           ++counters_.projections;
         }
         s[i].position_world += (kCorrectionSlackM - deeper_gap_m) * deeper_normal;
+        ++moves[i];
         mc[i].loaded = true;
         corrected = true;
       }
@@ -99,16 +110,25 @@ void NonsmoothIsland::project(std::vector<RigidBodyState>& s, std::vector<Member
     for (std::size_t a = 0; a < n; ++a) {
       if (!lattice_.active[a]) continue;
       for (std::size_t b = a + 1; b < n; ++b) {
-        if (!lattice_.active[b] ||
-            apart_by_bounds(members_[a].board, s[a], members_[b].board, s[b], 0.0)) {
+        if (!lattice_.active[b]) continue;
+        std::pair<long, long>& clear_at = pair_clear_at[a * n + b];
+        if (clear_at == std::make_pair(moves[a], moves[b])) continue;
+        if (apart_by_bounds(members_[a].board, s[a], members_[b].board, s[b], 0.0)) {
+          clear_at = {moves[a], moves[b]};
           continue;
         }
         const LensPose pa = pose_of(a), pb = pose_of(b);
-        if (apart_along_last_normal(a, pa, b, pb, 0.0)) continue;
+        if (apart_along_last_normal(a, pa, b, pb, 0.0)) {
+          clear_at = {moves[a], moves[b]};
+          continue;
+        }
         const LensPairContact c = pair_contact(
             members_[a].board.lens(), pa, members_[b].board.lens(), pb,
             [&]() -> const LensPairContact& { return pair_distance(a, pa, b, pb, commit); });
-        if (c.gap_m >= 0.0) continue;
+        if (c.gap_m >= 0.0) {
+          clear_at = {moves[a], moves[b]};
+          continue;
+        }
         auto blocked = [&](std::size_t i, const Eigen::Vector3d& push) {
           for (int k = 0; k < supports[i]; ++k) {
             if (push.dot(support_normal[2 * i + k]) < -kBlockedCosine) return true;
@@ -125,6 +145,8 @@ void NonsmoothIsland::project(std::vector<RigidBodyState>& s, std::vector<Member
         const double depth = kCorrectionSlackM - c.gap_m;
         s[a].position_world -= (wa / (wa + wb) * depth) * c.normal_world;
         s[b].position_world += (wb / (wa + wb) * depth) * c.normal_world;
+        ++moves[a];
+        ++moves[b];
         if (commit) {
           counters_.deepest_overlap_m = std::max(counters_.deepest_overlap_m, -c.gap_m);
           ++counters_.projections;
@@ -134,7 +156,10 @@ void NonsmoothIsland::project(std::vector<RigidBodyState>& s, std::vector<Member
         corrected = true;
       }
     }
-    if (project_obstacles(s, mc, commit)) corrected = true;
+    if (project_obstacles(s, mc, commit)) {
+      corrected = true;
+      for (long& m : moves) ++m;  // which members it moved is not tracked: check all again
+    }
     if (!corrected) {
       ++sweeps;
       return;
