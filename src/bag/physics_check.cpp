@@ -326,7 +326,7 @@ PhysicsResult check_physics(const RecordingInfo& info, const std::vector<OdomSam
       }
       if (!s.orientation.coeffs().allFinite()) {
         p.energy_drift = p.momentum_drift = p.orientation_error = p.position_error = nan;
-        p.angular_speed = nan;
+        p.angular_speed_radps = nan;
       } else {
         if (board) {
           p.gap_m = board->nearest(s).lens.gap_m;
@@ -338,7 +338,7 @@ PhysicsResult check_physics(const RecordingInfo& info, const std::vector<OdomSam
           seg.max_jellett_drift = std::fmax(seg.max_jellett_drift, p.jellett_drift);
         }
         const RigidBody body(model, s);
-        p.angular_speed = o.has_twist ? body.angular_velocity_world().norm() : nan;
+        p.angular_speed_radps = o.has_twist ? body.angular_velocity_world().norm() : nan;
         if (start && seg.kind == SegmentKind::contact && o.has_twist) {
           const double e = body.total_energy(info.gravity_world);
           p.energy_rise = scale > 0.0 ? (e - lowest_energy) / scale : 0.0;
@@ -383,7 +383,7 @@ PhysicsResult check_physics(const RecordingInfo& info, const std::vector<OdomSam
       // fails --strict: a zero quaternion through | |q| - 1 | = 1, a non-finite value through
       // the count in non_finite_odom.
       seg.duration_s = std::max(seg.duration_s, p.t_s);
-      seg.max_angular_speed = std::fmax(seg.max_angular_speed, p.angular_speed);
+      seg.max_angular_speed_radps = std::fmax(seg.max_angular_speed_radps, p.angular_speed_radps);
       seg.max_abs_position = std::fmax(seg.max_abs_position, o.position_world.norm());
       seg.max_quat_norm_error = std::fmax(seg.max_quat_norm_error, p.quat_norm_error);
       seg.max_energy_drift = std::fmax(seg.max_energy_drift, p.energy_drift);
@@ -402,8 +402,8 @@ PhysicsResult check_physics(const RecordingInfo& info, const std::vector<OdomSam
       if (seg.note.empty()) seg.note = "the energy of " + start_text(seg.plan) + " overflows";
     }
     if (start) {
-      seg.max_angular_speed = std::max(
-          seg.max_angular_speed,
+      seg.max_angular_speed_radps = std::max(
+          seg.max_angular_speed_radps,
           model.angular_velocity_world(start->orientation, start->angular_momentum_world).norm());
     }
     if (!std::isfinite(seg.min_gap_m)) seg.min_gap_m = nan;

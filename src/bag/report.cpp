@@ -240,7 +240,7 @@ void print_report(std::ostream& out, const Report& report) {
       out << "  " << std::right << std::setw(3) << k << "  " << std::left << std::setw(34) << reason
           << std::right << std::setw(14) << short_stamp_text(s.plan.start_ns) << std::setw(10)
           << fixed(s.duration_s, 3) << std::setw(8) << s.samples << std::setw(11)
-          << fixed(s.max_angular_speed, 3);
+          << fixed(s.max_angular_speed_radps, 3);
       if (s.samples == 0) {
         out << "  (no odom in this segment)\n";
         continue;
@@ -351,7 +351,7 @@ void write_csv(const std::string& path, const Report& report) {
   std::ofstream out(path);
   if (!out) throw OutputError("cannot write CSV " + path);
   out << "segment,stamp_s,time_s,t_segment_s,quat_norm_error,energy_drift,momentum_drift,"
-         "orientation_error_rad,position_error_m,angular_speed_rad_s,gap_m,energy_rise,"
+         "orientation_error_rad,position_error_m,angular_speed_radps,gap_m,energy_rise,"
          "jellett_drift\n";
   if (report.physics) {
     const auto& samples = report.physics->samples;
@@ -361,7 +361,7 @@ void write_csv(const std::string& path, const Report& report) {
       out << s.segment << "," << short_stamp_text(s.stamp_ns).substr(0) << ","
           << fixed(seconds_between(t0, s.stamp_ns), 9) << "," << fixed(s.t_s, 9) << ","
           << s.quat_norm_error << "," << s.energy_drift << "," << s.momentum_drift << ","
-          << s.orientation_error << "," << s.position_error << "," << s.angular_speed << ","
+          << s.orientation_error << "," << s.position_error << "," << s.angular_speed_radps << ","
           << s.gap_m << "," << s.energy_rise << "," << s.jellett_drift << "\n";
     }
   }

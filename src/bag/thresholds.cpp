@@ -85,7 +85,7 @@ PhysicsBounds physics_bounds(const std::string& integrator, double dt_s,
                                             "--max-momentum-drift");
   }
   const ErrorBoundConstants k = info ? info->error_bound : ErrorBoundConstants{};
-  const double w = segment.max_angular_speed, t = segment.duration_s;
+  const double w = segment.max_angular_speed_radps, t = segment.duration_s;
   const double hw_p = info && info->order > 0 ? std::pow(dt_s * w, info->order) : 0.0;
   b.orientation_error = kBoundFloor + k.k_orientation * hw_p * w * t;
   b.energy_drift = kBoundFloor + k.k_energy * hw_p * (1.0 + w * t);

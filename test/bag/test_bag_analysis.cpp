@@ -147,7 +147,7 @@ TEST(CheckPhysics, ExactRecordingHasNoError) {
   EXPECT_LT(s.max_momentum_drift, 1e-12);
   EXPECT_LT(s.max_quat_norm_error, 1e-12);
   EXPECT_NEAR(s.duration_s, 2.0, 1e-12);
-  EXPECT_GT(s.max_angular_speed, 25.0);
+  EXPECT_GT(s.max_angular_speed_radps, 25.0);
   EXPECT_EQ(r.samples.size(), 101u);
 }
 
@@ -234,7 +234,7 @@ TEST(CheckPhysics, NonAxisymmetricInertiaHasNoPrediction) {
 
 TEST(Thresholds, BoundsFollowTheIntegrator) {
   vb::SegmentResult seg;
-  seg.max_angular_speed = 20.0;
+  seg.max_angular_speed_radps = 20.0;
   seg.duration_s = 5.0;
   const vb::LimitOverrides none;
   const double g = 9.80665;

@@ -77,13 +77,13 @@ MotionModel model_from_info(const RecordingInfo& info);
 struct PhysicsSample {
   std::size_t segment = 0;
   std::int64_t stamp_ns = 0;
-  double t_s = 0.0;                // since the segment's start
-  double quat_norm_error = 0.0;    // | |q| - 1 | of the recorded quaternion
-  double energy_drift = 0.0;       // |E - E0| / energy scale of the segment
-  double momentum_drift = 0.0;     // |L - L0| / |L0| (world); L0 = 0: / max |L| of the segment
-  double orientation_error = 0.0;  // rad vs the closed form; NaN when there is no prediction
-  double position_error = 0.0;     // m vs the closed form; NaN when there is no prediction
-  double angular_speed = 0.0;      // |omega|, rad/s
+  double t_s = 0.0;                  // since the segment's start
+  double quat_norm_error = 0.0;      // | |q| - 1 | of the recorded quaternion
+  double energy_drift = 0.0;         // |E - E0| / energy scale of the segment
+  double momentum_drift = 0.0;       // |L - L0| / |L0| (world); L0 = 0: / max |L| of the segment
+  double orientation_error = 0.0;    // rad vs the closed form; NaN when there is no prediction
+  double position_error = 0.0;       // m vs the closed form; NaN when there is no prediction
+  double angular_speed_radps = 0.0;  // |omega|, rad/s
   // The lens's gap above the board's top or the table, m (negative: below it); NaN without the
   // board in ~info.
   double gap_m = 0.0;
@@ -101,7 +101,7 @@ struct SegmentResult {
   std::string note;
   std::size_t samples = 0;
   double duration_s = 0.0;  // last sample's t_s
-  double max_angular_speed = 0.0;
+  double max_angular_speed_radps = 0.0;
   double max_abs_position = 0.0;  // m, largest |x| seen (scales the round-off allowance)
   double max_quat_norm_error = 0.0;
   double max_energy_drift = 0.0;
