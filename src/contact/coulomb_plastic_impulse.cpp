@@ -1,6 +1,6 @@
 #include "virtual_go/contact/coulomb_plastic_impulse.h"
 
-#include <Eigen/Cholesky>
+#include <Eigen/LU>
 #include <cmath>
 #include <optional>
 
@@ -22,7 +22,7 @@ PlasticImpulse coulomb_plastic_impulse(const Eigen::Vector3d& n, const Eigen::Ma
   const double u_n = u.dot(n);
   if (!(u_n < 0.0)) return out;
   // Stick: u+ = 0, when the cone holds the impulse.
-  const Eigen::Vector3d stick = -k.ldlt().solve(u);
+  const Eigen::Vector3d stick = -(k.inverse() * u);  // 3x3: Eigen's closed-form cofactors
   const double stick_n = stick.dot(n);
   if (stick.allFinite() && stick_n > 0.0 && (stick - stick_n * n).norm() <= mu * stick_n) {
     out.impulse_world = stick;
@@ -47,10 +47,10 @@ PlasticImpulse coulomb_plastic_impulse(const Eigen::Vector3d& n, const Eigen::Ma
   // Newton from a guess of d; empty when it does not settle on a slip against the friction.
   auto newton = [&](const Eigen::Vector2d& guess) -> std::optional<Eigen::Vector3d> {
     if (!(guess.norm() > 0.0)) return std::nullopt;
-    double angle = std::atan2(guess.y(), guess.x());
+    Eigen::Vector2d d = guess.normalized();
     bool settled = false;
     for (int iteration = 0; iteration <= kMaxIterations; ++iteration) {
-      const Eigen::Vector2d d(std::cos(angle), std::sin(angle)), d_rate(-d.y(), d.x());
+      const Eigen::Vector2d d_rate(-d.y(), d.x());
       const double a = k_nn - mu * k_tn.dot(d);
       if (!(a > 0.0)) return std::nullopt;
       const double p_n = -u_n / a;
@@ -68,7 +68,9 @@ PlasticImpulse coulomb_plastic_impulse(const Eigen::Vector3d& n, const Eigen::Ma
       const Eigen::Vector2d v_rate = p_n_rate * w - p_n * mu * (k_tt * d_rate);
       const double step = f / (v_rate.x() * d.y() - v_rate.y() * d.x() + v.dot(d));
       if (!std::isfinite(step)) return std::nullopt;
-      angle -= step;
+      // The angle a - step, as the rotation by atan(step) (no trigonometry; the same root, and
+      // the iteration stays quadratic since atan(step) = step + O(step^3)).
+      d = (d - step * d_rate) / std::sqrt(1.0 + step * step);
       settled = std::abs(step) <= kSettledRad;
     }
     return std::nullopt;
