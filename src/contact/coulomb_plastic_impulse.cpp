@@ -17,15 +17,20 @@ constexpr int kMaxIterations = 40;
 }  // namespace
 
 PlasticImpulse coulomb_plastic_impulse(const Eigen::Vector3d& n, const Eigen::Matrix3d& k,
-                                       const Eigen::Vector3d& u, double mu) {
+                                       const Eigen::Vector3d& u_mps, double mu) {
   PlasticImpulse out;
+  // The law is homogeneous in u: it works on u / max|u_i| (a velocity of 1e-300 m/s, or 1e160,
+  // has a squared norm that underflows or overflows) and scales the impulse back.
+  const double u_scale = u_mps.cwiseAbs().maxCoeff();
+  if (!(u_scale > 0.0) || !std::isfinite(u_scale)) return out;
+  const Eigen::Vector3d u = u_mps / u_scale;
   const double u_n = u.dot(n);
   if (!(u_n < 0.0)) return out;
   // Stick: u+ = 0, when the cone holds the impulse.
   const Eigen::Vector3d stick = -(k.inverse() * u);  // 3x3: Eigen's closed-form cofactors
   const double stick_n = stick.dot(n);
   if (stick.allFinite() && stick_n > 0.0 && (stick - stick_n * n).norm() <= mu * stick_n) {
-    out.impulse_world = stick;
+    out.impulse_world = u_scale * stick;
     return out;
   }
   // Slip, in contact coordinates (t1, t2, n): for a final slip direction d = (cos a, sin a),
@@ -41,7 +46,7 @@ PlasticImpulse coulomb_plastic_impulse(const Eigen::Vector3d& n, const Eigen::Ma
   const Eigen::Vector2d u_t(t1.dot(u), t2.dot(u));
   const Eigen::Vector3d frictionless = -u_n / k_nn * n;
   if (!(mu > 0.0)) {
-    out.impulse_world = frictionless;
+    out.impulse_world = u_scale * frictionless;
     return out;
   }
   // Newton from a guess of d; empty when it does not settle on a slip against the friction.
@@ -83,11 +88,11 @@ PlasticImpulse coulomb_plastic_impulse(const Eigen::Vector3d& n, const Eigen::Ma
   for (const Eigen::Vector2d& guess :
        {Eigen::Vector2d(u_t - u_n / k_nn * k_tn), Eigen::Vector2d(-stick_t), u_t}) {
     if (const std::optional<Eigen::Vector3d> p = newton(guess)) {
-      out.impulse_world = *p;
+      out.impulse_world = u_scale * *p;
       return out;
     }
   }
-  out.impulse_world = frictionless;
+  out.impulse_world = u_scale * frictionless;
   out.frictionless = true;
   return out;
 }

@@ -171,3 +171,24 @@ TEST(CoulombPlasticImpulse, ZeroWhenNotApproaching) {
   EXPECT_TRUE(vg::coulomb_plastic_impulse(n, k, Vector3d(0.3, 0, 0.1), 0.3).impulse_world.isZero());
   EXPECT_GT(vg::coulomb_plastic_impulse(n, k, Vector3d(0.3, 0, -1e-9), 0.3).impulse_world.z(), 0.0);
 }
+
+TEST(CoulombPlasticImpulse, ScalesWithTheVelocityFromDenormalToHuge) {
+  // The law is homogeneous: P(c u) = c P(u), also where |u|^2 underflows or overflows.
+  Random random;
+  for (int trial = 0; trial < 200; ++trial) {
+    const Vector3d n = random.unit();
+    const Matrix3d k = compliance(random.orientation(), random.lever()) +
+                       compliance(random.orientation(), random.lever());
+    const Vector3d u = -n + 2.0 * random.uniform(random.rng) * random.unit().cross(n);
+    const double mu = 0.8 * random.uniform(random.rng);
+    const vg::PlasticImpulse unit = vg::coulomb_plastic_impulse(n, k, u, mu);
+    for (const double c : {1e-300, 1e-160, 1e160}) {
+      const vg::PlasticImpulse scaled = vg::coulomb_plastic_impulse(n, k, c * u, mu);
+      ASSERT_TRUE(scaled.impulse_world.allFinite()) << "scale " << c;
+      EXPECT_FALSE(scaled.frictionless);
+      EXPECT_LT((scaled.impulse_world / c - unit.impulse_world).norm(),
+                1e-13 * unit.impulse_world.norm())
+          << "trial " << trial << " scale " << c;
+    }
+  }
+}

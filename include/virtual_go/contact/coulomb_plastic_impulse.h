@@ -26,8 +26,9 @@ struct PlasticImpulse {
   bool frictionless = false;
 };
 
-// P as above for u.n < 0; zero when u does not approach (u.n >= 0).
+// P as above for u.n < 0, for any finite u from denormal to ~1e300 m/s (the law is homogeneous
+// in u: it works on u / max|u_i|); zero when u does not approach (u.n >= 0) or is not finite.
 PlasticImpulse coulomb_plastic_impulse(const Eigen::Vector3d& n, const Eigen::Matrix3d& k,
-                                       const Eigen::Vector3d& u, double mu);
+                                       const Eigen::Vector3d& u_mps, double mu);
 
 }  // namespace virtual_go
