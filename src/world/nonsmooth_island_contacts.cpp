@@ -1,7 +1,10 @@
 // NonsmoothIsland's contacts: their detection (gather, the pair distances and their memo, the
 // obstacles) and step 2, the position corrections out of every overlap (project).
+#include <Eigen/LU>
 #include <algorithm>
+#include <cmath>
 #include <optional>
+#include <vector>
 
 #include "nonsmooth_island_impl.h"
 #include "virtual_go/geometry/lens_pair_distance.h"
@@ -27,6 +30,53 @@ constexpr double kBlockedCosine = 1e-6;
 constexpr double kKeepMarginFactor = 10.0;
 
 using nonsmooth_island_detail::apart_by_bounds;
+
+// A stone pair at a sweep's poses that overlaps or touches: normal from a to b, its gap (m), and
+// the shares of a separation along the normal each member takes (inverse masses; 0 for a member
+// the board holds).
+struct PairGap {
+  std::size_t a, b;
+  Eigen::Vector3d normal_world;
+  double gap_m;
+  double share_a, share_b;
+};
+
+// At most this many pairs are separated jointly (a dense solve); more go pair by pair.
+constexpr std::size_t kMaxJoint = 24;
+// A pair touching within this (m) joins a joint separation that would press it into overlap.
+constexpr double kTouchingM = 2.0 * kGapToleranceM;
+
+// How much row's gap grows per unit separation of pair `by` (its members moved by their shares
+// along its normal), to first order: along row's normal.
+double coupling(const PairGap& row, const PairGap& by) {
+  const auto moved = [](const PairGap& o, std::size_t i) -> Eigen::Vector3d {
+    if (i == o.b) return o.share_b * o.normal_world;
+    if (i == o.a) return -o.share_a * o.normal_world;
+    return Eigen::Vector3d::Zero();
+  };
+  return row.normal_world.dot(moved(by, row.b) - moved(by, row.a));
+}
+
+// The separations (m) along each pair's normal that make every gap of `active` the slack at
+// once, to first order: sum_j coupling(k, j) s_j = slack - gap_k (unit diagonal). Empty unless
+// every separation is positive and finite and the system solved.
+std::optional<Eigen::VectorXd> joint_separations(const std::vector<PairGap>& active) {
+  const Eigen::Index k = static_cast<Eigen::Index>(active.size());
+  Eigen::MatrixXd m(k, k);
+  Eigen::VectorXd depth(k);
+  for (Eigen::Index r = 0; r < k; ++r) {
+    depth[r] = kCorrectionSlackM - active[static_cast<std::size_t>(r)].gap_m;
+    for (Eigen::Index c = 0; c < k; ++c) {
+      m(r, c) = coupling(active[static_cast<std::size_t>(r)], active[static_cast<std::size_t>(c)]);
+    }
+  }
+  const Eigen::VectorXd separation = m.partialPivLu().solve(depth);
+  for (Eigen::Index j = 0; j < k; ++j) {
+    if (!std::isfinite(separation[j]) || !(separation[j] > 0.0)) return std::nullopt;
+  }
+  if (!((m * separation - depth).norm() <= 1e-9 * depth.norm())) return std::nullopt;
+  return separation;
+}
 
 // The contact to push along (lens_pair_distance.h): not a tilted normal of touching rims.
 // `best()` gives lens_pair_distance's contact; it is asked for only when the centre line is not
@@ -105,55 +155,104 @@ void NonsmoothIsland::project(std::vector<RigidBodyState>& s, std::vector<Member
         corrected = true;
       }
     }
-    // Stone pairs: both along the pair normal, split by inverse mass; a stone that the
+    // Stone pairs: a pair's gap at the present poses when it overlaps or touches, with the
+    // shares of a separation: both along the pair normal, split by inverse mass; a stone that the
     // correction would press into a board contact it lies on stays (the board holds it).
+    const auto pair_gap = [&](std::size_t a, std::size_t b) -> std::optional<PairGap> {
+      std::pair<long, long>& clear_at = pair_clear_at[a * n + b];
+      if (clear_at == std::make_pair(moves[a], moves[b])) return std::nullopt;
+      if (apart_by_bounds(members_[a].board, s[a], members_[b].board, s[b], 0.0)) {
+        clear_at = {moves[a], moves[b]};
+        return std::nullopt;
+      }
+      const LensPose pa = pose_of(a), pb = pose_of(b);
+      if (apart_along_last_normal(a, pa, b, pb, 0.0)) {
+        clear_at = {moves[a], moves[b]};
+        return std::nullopt;
+      }
+      const LensPairContact c = pair_contact(
+          members_[a].board.lens(), pa, members_[b].board.lens(), pb,
+          [&]() -> const LensPairContact& { return pair_distance(a, pa, b, pb, commit); });
+      if (c.gap_m >= 0.0) {
+        clear_at = {moves[a], moves[b]};
+        if (c.gap_m >= kTouchingM) return std::nullopt;
+      }
+      auto blocked = [&](std::size_t i, const Eigen::Vector3d& push) {
+        for (int k = 0; k < supports[i]; ++k) {
+          if (push.dot(support_normal[2 * i + k]) < -kBlockedCosine) return true;
+        }
+        return false;
+      };
+      double wa = 1.0 / members_[a].setup.model.mass_properties().mass();
+      double wb = 1.0 / members_[b].setup.model.mass_properties().mass();
+      const bool hold_a = blocked(a, -c.normal_world), hold_b = blocked(b, c.normal_world);
+      if (hold_a != hold_b) {
+        if (hold_a) wa = 0.0;
+        if (hold_b) wb = 0.0;
+      }
+      return PairGap{a, b, c.normal_world, c.gap_m, wa / (wa + wb), wb / (wa + wb)};
+    };
+    const auto separate = [&](const PairGap& o, double separation_m) {
+      s[o.a].position_world -= (o.share_a * separation_m) * o.normal_world;
+      s[o.b].position_world += (o.share_b * separation_m) * o.normal_world;
+      ++moves[o.a];
+      ++moves[o.b];
+      if (commit) {
+        counters_.deepest_overlap_m = std::max(counters_.deepest_overlap_m, -o.gap_m);
+        ++counters_.projections;
+        ++counters_.pair_projections;
+      }
+      mc[o.a].loaded = mc[o.b].loaded = true;
+      corrected = true;
+    };
+    // Separated jointly: the separations that make every overlapping pair's gap the slack at
+    // once, where every touching pair they would press into overlap (to first order) joins
+    // them, until none would (an active set). Pair by pair, a stone wedged between two leaning
+    // neighbours converged by 0.3 to 0.5 per sweep, the correction out of one pressing it into
+    // the other, which only touched (12.7 sweeps per sub-step in the cluster scene). When a
+    // separation comes out non-positive or the system is singular: pair by pair, each with the
+    // poses the corrections before it left.
+    std::vector<PairGap> active, touching;
     for (std::size_t a = 0; a < n; ++a) {
       if (!lattice_.active[a]) continue;
       for (std::size_t b = a + 1; b < n; ++b) {
         if (!lattice_.active[b]) continue;
-        std::pair<long, long>& clear_at = pair_clear_at[a * n + b];
-        if (clear_at == std::make_pair(moves[a], moves[b])) continue;
-        if (apart_by_bounds(members_[a].board, s[a], members_[b].board, s[b], 0.0)) {
-          clear_at = {moves[a], moves[b]};
-          continue;
+        if (const std::optional<PairGap> o = pair_gap(a, b)) {
+          (o->gap_m < 0.0 ? active : touching).push_back(*o);
         }
-        const LensPose pa = pose_of(a), pb = pose_of(b);
-        if (apart_along_last_normal(a, pa, b, pb, 0.0)) {
-          clear_at = {moves[a], moves[b]};
-          continue;
+      }
+    }
+    std::optional<Eigen::VectorXd> joint;
+    const bool solve = !active.empty() && active.size() + touching.size() > 1 &&
+                       active.size() + touching.size() <= kMaxJoint;
+    for (bool grew = solve; grew;) {
+      grew = false;
+      joint = joint_separations(active);
+      if (!joint) break;
+      for (std::size_t t = 0; t < touching.size();) {
+        double gap_after_m = touching[t].gap_m;
+        for (std::size_t j = 0; j < active.size(); ++j) {
+          gap_after_m += (*joint)[static_cast<Eigen::Index>(j)] * coupling(touching[t], active[j]);
         }
-        const LensPairContact c = pair_contact(
-            members_[a].board.lens(), pa, members_[b].board.lens(), pb,
-            [&]() -> const LensPairContact& { return pair_distance(a, pa, b, pb, commit); });
-        if (c.gap_m >= 0.0) {
-          clear_at = {moves[a], moves[b]};
-          continue;
+        if (gap_after_m < 0.0) {
+          active.push_back(touching[t]);
+          touching.erase(touching.begin() + static_cast<std::ptrdiff_t>(t));
+          grew = true;
+        } else {
+          ++t;
         }
-        auto blocked = [&](std::size_t i, const Eigen::Vector3d& push) {
-          for (int k = 0; k < supports[i]; ++k) {
-            if (push.dot(support_normal[2 * i + k]) < -kBlockedCosine) return true;
-          }
-          return false;
-        };
-        double wa = 1.0 / members_[a].setup.model.mass_properties().mass();
-        double wb = 1.0 / members_[b].setup.model.mass_properties().mass();
-        const bool hold_a = blocked(a, -c.normal_world), hold_b = blocked(b, c.normal_world);
-        if (hold_a != hold_b) {
-          if (hold_a) wa = 0.0;
-          if (hold_b) wb = 0.0;
+      }
+    }
+    if (joint) {
+      for (std::size_t j = 0; j < active.size(); ++j) {
+        separate(active[j], (*joint)[static_cast<Eigen::Index>(j)]);
+      }
+    } else {
+      for (const PairGap& first : active) {
+        if (first.gap_m >= 0.0) continue;
+        if (const std::optional<PairGap> o = pair_gap(first.a, first.b)) {
+          if (o->gap_m < 0.0) separate(*o, kCorrectionSlackM - o->gap_m);
         }
-        const double depth = kCorrectionSlackM - c.gap_m;
-        s[a].position_world -= (wa / (wa + wb) * depth) * c.normal_world;
-        s[b].position_world += (wb / (wa + wb) * depth) * c.normal_world;
-        ++moves[a];
-        ++moves[b];
-        if (commit) {
-          counters_.deepest_overlap_m = std::max(counters_.deepest_overlap_m, -c.gap_m);
-          ++counters_.projections;
-          ++counters_.pair_projections;
-        }
-        mc[a].loaded = mc[b].loaded = true;
-        corrected = true;
       }
     }
     if (project_obstacles(s, mc, commit)) {

@@ -10,7 +10,10 @@
 //      board or table contact translates the stone along its normal by the overlap; a stone pair
 //      translates both along the pair's normal (lens_pair_distance), split by inverse mass, except
 //      that a stone pressed by the correction into a board contact it lies on does not move (the
-//      other takes all of it: a stack converges in one sweep instead of halving per sweep);
+//      other takes all of it: a stack converges in one sweep instead of halving per sweep); the
+//      pairs of a sweep are separated jointly (the separations that make every overlapping gap
+//      zero at once, with each touching pair they would press into overlap joining them), pair
+//      by pair only when that solve fails;
 //   3. velocities: first (with options.pair_impacts) the impacts between members (the rule for
 //      simultaneous contacts,
 //      docs/physics.md "World", the fallback): of the member contacts within the margin, the one
