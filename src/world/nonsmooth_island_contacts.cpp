@@ -114,6 +114,7 @@ void NonsmoothIsland::project(std::vector<RigidBodyState>& s, std::vector<Member
   // correction moves a member it involves: the same results as a full sweep, with less work.
   std::vector<long> moves(n, 0), board_clear_at(n, -1);
   std::vector<std::pair<long, long>> pair_clear_at(n * n, {-1, -1});
+  std::vector<PairGap> active, touching;  // a sweep's overlapping and touching pairs
   for (sweeps = 0; sweeps < kMaxProjectionSweeps; ++sweeps) {
     bool corrected = false;
     // The board and the table: translate along the deeper contact's normal (their normals are
@@ -212,7 +213,8 @@ void NonsmoothIsland::project(std::vector<RigidBodyState>& s, std::vector<Member
     // the other, which only touched (12.7 sweeps per sub-step in the cluster scene). When a
     // separation comes out non-positive or the system is singular: pair by pair, each with the
     // poses the corrections before it left.
-    std::vector<PairGap> active, touching;
+    active.clear();
+    touching.clear();
     for (std::size_t a = 0; a < n; ++a) {
       if (!lattice_.active[a]) continue;
       for (std::size_t b = a + 1; b < n; ++b) {
@@ -248,10 +250,16 @@ void NonsmoothIsland::project(std::vector<RigidBodyState>& s, std::vector<Member
         separate(active[j], (*joint)[static_cast<Eigen::Index>(j)]);
       }
     } else {
-      for (const PairGap& first : active) {
-        if (first.gap_m >= 0.0) continue;
-        if (const std::optional<PairGap> o = pair_gap(first.a, first.b)) {
-          if (o->gap_m < 0.0) separate(*o, kCorrectionSlackM - o->gap_m);
+      // A pair whose members no correction of this pass has moved is as it was found (a check is
+      // a function of the poses): only the others are checked again.
+      std::vector<char> moved(n, 0);
+      for (const PairGap& found : active) {
+        if (found.gap_m >= 0.0) continue;
+        const std::optional<PairGap> o =
+            moved[found.a] || moved[found.b] ? pair_gap(found.a, found.b) : found;
+        if (o && o->gap_m < 0.0) {
+          separate(*o, kCorrectionSlackM - o->gap_m);
+          moved[o->a] = moved[o->b] = 1;
         }
       }
     }

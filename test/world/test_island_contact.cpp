@@ -183,6 +183,8 @@ TEST(IslandContact, AStoneSetDownOnARestingStoneRestsExactlyOnIt) {
   EXPECT_LE(w.worst_rise, kEnergyRoundOffJ);
   EXPECT_EQ(island.counters().largest_energy_excess_j, 0.0);
   const vg::NonsmoothCounters& c = island.counters();
+  EXPECT_GT(c.impulses, 0);
+  EXPECT_EQ(c.frictionless_impulses, 0);  // the Coulomb law found every slip direction
   std::printf(
       "[ stack   ] rest at %.1f ms: %ld sub-steps, %ld samples, %ld impulses (%ld pair), %ld "
       "projections (%ld pair), %ld pair distances, sweeps: positions %ld (max %d), velocities "
@@ -290,6 +292,8 @@ TEST(IslandContact, ARowStruckAtOneEndMovesOnAsOneBody) {
   EXPECT_LE(w.worst_rise, kEnergyRoundOffJ);
   EXPECT_EQ(island.counters().largest_energy_excess_j, 0.0);
   const vg::NonsmoothCounters& c = island.counters();
+  EXPECT_GT(c.impulses, 0);
+  EXPECT_EQ(c.frictionless_impulses, 0);  // the Coulomb law found every slip direction
   double last = 0;
   for (double t : left_at) last = std::max(last, t);
   std::printf(
