@@ -84,6 +84,14 @@ const Eigen::Matrix3d& SweepCompliances::board(std::size_t i, int k, const Motio
   return c.k;
 }
 
+Eigen::Vector3d SweepCompliances::point_velocity(std::size_t i, const MotionModel& model,
+                                                 const RigidBodyState& s,
+                                                 const Eigen::Vector3d& point_world) {
+  const Eigen::Vector3d omega_world =
+      member(i, model, s).inverse_inertia_world * s.angular_momentum_world;
+  return s.velocity_world + omega_world.cross(point_world - s.position_world);
+}
+
 Eigen::Matrix3d SweepCompliances::member_at(std::size_t i, const MotionModel& model,
                                             const RigidBodyState& s,
                                             const Eigen::Vector3d& point_world) {

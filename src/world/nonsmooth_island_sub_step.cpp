@@ -21,10 +21,6 @@ constexpr double kApproachToleranceMps = 1e-12;
 // A pair impulse does not move a stone it would press into a board contact it lies on with a
 // cosine above this (mostly into the board: a stone under another, not one pushed along a row).
 constexpr double kPressedCosine = 0.5;
-// ... but only after this many plain sweeps: the first ones pass the impulse through the lower
-// stone to the board with its torque (an eccentric landing can tip it); holding the lower stone
-// from then on makes the rest converge at once instead of halving per sweep.
-constexpr int kPlainSweeps = 8;
 
 void apply_impulse(const MotionModel& model, RigidBodyState& s, const Eigen::Vector3d& point_world,
                    const Eigen::Vector3d& impulse_world) {
@@ -88,8 +84,8 @@ NonsmoothIsland::Step NonsmoothIsland::sub_step(const Lattice& lattice_from, dou
       const PairContact& p = pairs[j];
       if (p.obstacle) continue;
       const MotionModel &ma = members_[p.a].setup.model, &mb = members_[p.b].setup.model;
-      const Eigen::Vector3d u = point_velocity_world(mb, s[p.b], p.point_world) -
-                                point_velocity_world(ma, s[p.a], p.point_world);
+      const Eigen::Vector3d u = compliances.point_velocity(p.b, mb, s[p.b], p.point_world) -
+                                compliances.point_velocity(p.a, ma, s[p.a], p.point_world);
       const double u_n = p.normal_world.dot(u);
       if (!(u_n < -kApproachToleranceMps)) {
         // Not approaching: the friction its normal impulse so far allows, if it slips.
@@ -119,7 +115,7 @@ NonsmoothIsland::Step NonsmoothIsland::sub_step(const Lattice& lattice_from, dou
         }
         return false;
       };
-      const bool shock = velocity_sweeps >= kPlainSweeps;
+      const bool shock = velocity_sweeps >= kNonsmoothPlainSweeps;
       const bool held_a = shock && pressed(p.a, -p.normal_world);
       const bool held_b = shock && pressed(p.b, p.normal_world);
       if (held_a != held_b) {
@@ -136,8 +132,8 @@ NonsmoothIsland::Step NonsmoothIsland::sub_step(const Lattice& lattice_from, dou
         const Eigen::Vector3d n = held_a ? p.normal_world : Eigen::Vector3d(-p.normal_world);
         const MotionModel& moving_model = members_[moving].setup.model;
         const Eigen::Vector3d u_moving =
-            point_velocity_world(moving_model, s[moving], p.point_world) -
-            point_velocity_world(members_[held].setup.model, s[held], p.point_world);
+            compliances.point_velocity(moving, moving_model, s[moving], p.point_world) -
+            compliances.point_velocity(held, members_[held].setup.model, s[held], p.point_world);
         const PlasticImpulse impulse = coulomb_plastic_impulse(
             n, compliances.member_at(moving, moving_model, s[moving], p.point_world), u_moving,
             stone_plastic_.friction);
@@ -178,12 +174,15 @@ NonsmoothIsland::Step NonsmoothIsland::sub_step(const Lattice& lattice_from, dou
   const bool round_off_only =
       free && std::count(lattice_.active.begin(), lattice_.active.end(), 1) > 1 &&
       energy_now_j - energy_cap_j <= energy_round_off(s) && energy_now_j <= lattice_from.ceiling_j;
-  if (!hold && !round_off_only && energy(s, lattice_.active) > energy_cap_j) {
+  // The energy handed out: energy_now_j unless the guard or a hold below changes the states.
+  double energy_out_j = energy_now_j;
+  if (!hold && !round_off_only && energy_now_j > energy_cap_j) {
     if (commit) ++counters_.energy_guard_scalings;
     // Free: the motion relative to the rigid motion first (momenta kept), else all of it.
     const bool scaled = (free && scale_kinetic_energy(s, energy_cap_j, true)) ||
                         scale_kinetic_energy(s, energy_cap_j, false);
-    if (!scaled || energy(s, lattice_.active) > energy_cap_j) {
+    energy_out_j = energy(s, lattice_.active);
+    if (!scaled || energy_out_j > energy_cap_j) {
       hold = true;  // the lift cannot be paid for
     }
   }
@@ -211,6 +210,7 @@ NonsmoothIsland::Step NonsmoothIsland::sub_step(const Lattice& lattice_from, dou
       }
     }
     gather(s, out.contacts, pairs, commit);
+    energy_out_j = energy(s, lattice_.active);
   }
   if (commit) {
     counters_.projection_sweeps += projection_sweeps;
@@ -218,7 +218,7 @@ NonsmoothIsland::Step NonsmoothIsland::sub_step(const Lattice& lattice_from, dou
     counters_.most_projection_sweeps =
         std::max(counters_.most_projection_sweeps, projection_sweeps);
     counters_.most_velocity_sweeps = std::max(counters_.most_velocity_sweeps, velocity_sweeps);
-    const double excess = energy(s, lattice_.active) - energy_cap_j;
+    const double excess = energy_out_j - energy_cap_j;
     if (excess > 0.0) {
       counters_.largest_energy_excess_j = std::max(counters_.largest_energy_excess_j, excess);
     }
@@ -288,7 +288,7 @@ bool NonsmoothIsland::board_impulses(std::size_t i, std::vector<RigidBodyState>&
     const Eigen::Vector3d& n = c.lens.normal_world;
     const Eigen::Vector3d& point = c.lens.point_world;
     Eigen::Vector3d& sum = accumulated[2 * i + static_cast<std::size_t>(k)];
-    const Eigen::Vector3d u = point_velocity_world(model, s[i], point);
+    const Eigen::Vector3d u = compliances.point_velocity(i, model, s[i], point);
     if (n.dot(u) < -kApproachToleranceMps) {
       const PlasticImpulse impulse = coulomb_plastic_impulse(
           n, compliances.board(i, k, model, s[i], point), u, material.friction);

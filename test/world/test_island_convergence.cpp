@@ -63,8 +63,8 @@ vg::ContactMaterial material(double mu) {
 }
 
 // The velocity sweeps the island runs before it starts holding a stone pressed into the board
-// (nonsmooth_island_sub_step.cpp, kPlainSweeps).
-constexpr int kPlainSweeps = 8;
+// (nonsmooth_island.h, kNonsmoothPlainSweeps).
+constexpr int kPlainSweeps = vg::kNonsmoothPlainSweeps;
 
 vg::NonsmoothContactOptions options(double h, int max_sweeps) {
   vg::NonsmoothContactOptions o;

@@ -50,6 +50,10 @@ class SweepCompliances {
   // Member i's own compliance at point_world (not kept: a held stone's contact, seldom asked).
   Eigen::Matrix3d member_at(std::size_t i, const MotionModel& model, const RigidBodyState& s,
                             const Eigen::Vector3d& point_world);
+  // The velocity of member i's material point at point_world: v + (I_world^-1 L) x r, with the
+  // kept inverse inertia (the poses stay through the sweeps: no rotation of L per call).
+  Eigen::Vector3d point_velocity(std::size_t i, const MotionModel& model, const RigidBodyState& s,
+                                 const Eigen::Vector3d& point_world);
   // Pair contact j between members a (model_a, s_a) and b at point_world: K_a + K_b.
   const Eigen::Matrix3d& pair(std::size_t j, std::size_t a, const MotionModel& model_a,
                               const RigidBodyState& s_a, std::size_t b, const MotionModel& model_b,
