@@ -5,7 +5,6 @@
 #include <cmath>
 
 #include "virtual_go/contact/coulomb_plastic_impulse.h"
-#include "virtual_go/contact/impact.h"
 #include "virtual_go/contact/pair_impact.h"
 #include "virtual_go/contact/time_of_impact.h"
 #include "virtual_go/flight/exact_motion.h"
@@ -79,7 +78,7 @@ NonsmoothIsland::Step NonsmoothIsland::sub_step(const Lattice& lattice_from, dou
     for (std::size_t i = 0; i < n; ++i) {
       if (board_impulses(i, s, out.contacts, board_sum, compliances, commit)) acted = true;
     }
-    if (obstacle_impulses(s, out.contacts, pairs, commit)) acted = true;
+    if (obstacle_impulses(s, out.contacts, pairs, compliances, commit)) acted = true;
     for (std::size_t j = 0; j < pairs.size(); ++j) {
       const PairContact& p = pairs[j];
       if (p.obstacle) continue;
@@ -312,17 +311,21 @@ bool NonsmoothIsland::board_impulses(std::size_t i, std::vector<RigidBodyState>&
 
 bool NonsmoothIsland::obstacle_impulses(std::vector<RigidBodyState>& s,
                                         std::vector<MemberContacts>& mc,
-                                        const std::vector<PairContact>& pairs, bool commit) {
-  // The member's plastic impact on a fixed surface (the obstacle's, normal towards the member).
+                                        const std::vector<PairContact>& pairs,
+                                        SweepCompliances& compliances, bool commit) {
+  // The member's plastic impulse on a fixed surface (the obstacle's, normal towards the member),
+  // by the same local Coulomb law as every other plastic impulse of the sweeps.
   bool acted = false;
   for (const PairContact& p : pairs) {
     if (!p.obstacle) continue;
     const MotionModel& model = members_[p.a].setup.model;
-    const double u_n = -p.normal_world.dot(point_velocity_world(model, s[p.a], p.point_world));
-    if (!(u_n < -kApproachToleranceMps)) continue;
-    s[p.a] = resolve_impact(model, s[p.a], p.point_world, -p.normal_world, stone_plastic_,
-                            members_[p.a].setup.gravity_world)
-                 .state;
+    const Eigen::Vector3d n = -p.normal_world;
+    const Eigen::Vector3d u = compliances.point_velocity(p.a, model, s[p.a], p.point_world);
+    if (!(n.dot(u) < -kApproachToleranceMps)) continue;
+    const PlasticImpulse impulse = coulomb_plastic_impulse(
+        n, compliances.member_at(p.a, model, s[p.a], p.point_world), u, stone_plastic_.friction);
+    apply_impulse(model, s[p.a], p.point_world, impulse.impulse_world);
+    if (commit && impulse.frictionless) ++counters_.frictionless_impulses;
     obstacle_acted_[p.b] = 1;
     mc[p.a].loaded = true;
     acted = true;

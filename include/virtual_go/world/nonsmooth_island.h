@@ -199,12 +199,12 @@ struct IslandBody {
 
 // A resting stone near the island (set_obstacles): the island keeps its members out of it as it
 // keeps them out of the board, and never moves it. A correction out of it moves only the member;
-// an impulse on it is the member's one-body impact on a fixed surface (plastic, Coulomb friction:
-// resolve_impact), so it can only take energy away and nothing overlaps. When a committed sub-step
-// acts on it beyond round-off (an impulse: an approach faster than the solver's approach
-// tolerance, 1e-12 m/s; a correction deeper than the gap tolerance, 1e-12 m) the island does not
-// commit that sub-step: it stops at the lattice point before it and names the obstacle
-// (IslandOutcome::woken), so that the World can redo the sub-step with it as a member.
+// an impulse on it is the member's plastic impulse on a fixed surface (the sweeps' local Coulomb
+// law, contact/coulomb_plastic_impulse.h), so it can only take energy away and nothing overlaps.
+// When a committed sub-step acts on it beyond round-off (an impulse: an approach faster than the
+// solver's approach tolerance, 1e-12 m/s; a correction deeper than the gap tolerance, 1e-12 m) the
+// island does not commit that sub-step: it stops at the lattice point before it and names the
+// obstacle (IslandOutcome::woken), so that the World can redo the sub-step with it as a member.
 struct IslandObstacle {
   LensGeometry lens;
   RigidBodyState state;  // at rest: its pose is all that is used
@@ -383,7 +383,8 @@ class NonsmoothIsland {
                          bool commit);
   // Plastic impulses at the member-obstacle contacts that approach (step 3): true if any.
   bool obstacle_impulses(std::vector<RigidBodyState>& s, std::vector<MemberContacts>& mc,
-                         const std::vector<PairContact>& pairs, bool commit);
+                         const std::vector<PairContact>& pairs, SweepCompliances& compliances,
+                         bool commit);
 
   std::vector<Member> members_;
   ContactMaterial board_plastic_, table_plastic_, stone_plastic_, stone_material_;
