@@ -183,9 +183,8 @@ AdvanceResult World::advance_to(double t_s, std::vector<WorldEvent>& events,
     if (time_ == next.time_s) resolve_interaction(next);  // stage 4
     // A pass that ended where an island woke obstacles made progress: the island grew (at most
     // once per stone).
-    passes_at_instant = time_ == before && counters_.obstacle_wakes == wakes_before
-                            ? passes_at_instant + 1
-                            : 0;
+    passes_at_instant =
+        time_ == before && counters_.obstacle_wakes == wakes_before ? passes_at_instant + 1 : 0;
     if (passes_at_instant > kMaxTransitionsAtInstant * 4) {
       // A standoff of stone-stone events at one instant (not expected: every impact removes
       // energy and a sustained contact goes to an island): step on without stone contact.
@@ -614,11 +613,16 @@ void World::sync_plane_counters(std::size_t i) {
 
 void World::sync_nonsmooth_counters(std::size_t i) {
   StoneRecord& r = stones_.record(i);
-  const NonsmoothCounters& c = r.nonsmooth->counters();
-  counters_.nonsmooth_steps += c.steps - r.nonsmooth_seen.steps;
-  counters_.nonsmooth_impulses += c.impulses - r.nonsmooth_seen.impulses;
-  counters_.contact_searches += c.separation_searches - r.nonsmooth_seen.separation_searches;
-  r.nonsmooth_seen = c;
+  add_nonsmooth_work(r.nonsmooth->counters(), r.nonsmooth_seen);
+}
+
+void World::add_nonsmooth_work(const NonsmoothCounters& now, NonsmoothCounters& seen) {
+  counters_.nonsmooth_steps += now.steps - seen.steps;
+  counters_.nonsmooth_impulses += now.impulses - seen.impulses;
+  counters_.nonsmooth_frictionless_impulses +=
+      now.frictionless_impulses - seen.frictionless_impulses;
+  counters_.contact_searches += now.separation_searches - seen.separation_searches;
+  seen = now;
 }
 
 WorldEvent& World::emit(std::size_t i, double t_s, WorldEventKind kind, WorldEventDetail detail,

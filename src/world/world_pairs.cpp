@@ -694,11 +694,7 @@ void World::advance_islands(double& t_s, long work_limit) {
 double World::advance_island(IslandRun& run, double t_s, long work_limit) {
   for (;;) {
     const IslandOutcome o = run.island.advance(t_s, std::max(1L, work_limit - counters_.work()));
-    const NonsmoothCounters& c = run.island.counters();
-    counters_.nonsmooth_steps += c.steps - run.seen.steps;
-    counters_.nonsmooth_impulses += c.impulses - run.seen.impulses;
-    counters_.contact_searches += c.separation_searches - run.seen.separation_searches;
-    run.seen = c;
+    add_nonsmooth_work(run.island.counters(), run.seen);
     for (std::size_t m = 0; m < run.members.size(); ++m) {
       if (!run.in[m]) continue;
       StoneHot& h = stones_.hot(index_of(run.members[m]));

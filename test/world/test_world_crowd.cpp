@@ -131,10 +131,10 @@ CrowdRecord run_crowd(Crowd& cr, double t_end) {
       "%zu events; %d of 9 block stones never named (bitwise still); largest energy rise %.3g of "
       "the energy brought in (%.3g J), energy lost %.3f of it; smallest gaps %.3g m (pairs), "
       "%.3g m (board); %ld pair impacts, %ld islands, %ld island sub-steps, %ld pair searches, "
-      "%ld gap checks, %ld passes\n",
+      "%ld gap checks, %ld passes, %ld island impulses (%ld frictionless)\n",
       r.reached, r.rest_at, r.events, r.untouched, r.worst_rise, r.e_in, r.lost, r.worst_gap,
       r.worst_board, c.pair_impacts, c.islands_formed, c.nonsmooth_steps, c.pair_searches,
-      c.pair_gap_checks, c.stages);
+      c.pair_gap_checks, c.stages, c.nonsmooth_impulses, c.nonsmooth_frictionless_impulses);
   return r;
 }
 
@@ -165,6 +165,12 @@ TEST(WorldCrowd, AStoneThrownIntoABlockComesToRest) {
   EXPECT_LE(r.worst_rise, 1e-11);
   EXPECT_GE(r.worst_gap, -1e-9);
   EXPECT_GE(r.worst_board, -1e-9);
+  // Every plastic impulse of the islands found its slip direction (the local Coulomb law's
+  // frictionless fallback, contact/coulomb_plastic_impulse.h, was never taken), against many
+  // impulses.
+  const vg::WorldCounters& c = cr.world.counters();
+  EXPECT_GT(c.nonsmooth_impulses, 10000);
+  EXPECT_EQ(c.nonsmooth_frictionless_impulses, 0);
 }
 
 }  // namespace

@@ -245,6 +245,8 @@ class World {
   bool transition_allowed(std::size_t i, double t_s);
   void sync_plane_counters(std::size_t i);
   void sync_nonsmooth_counters(std::size_t i);
+  // Adds a fallback's or an island's work since `seen` to the world's counters; seen = now.
+  void add_nonsmooth_work(const NonsmoothCounters& now, NonsmoothCounters& seen);
   WorldEvent& emit(std::size_t i, double t_s, WorldEventKind kind, WorldEventDetail detail,
                    const RigidBodyState& state);
   const ContactMaterial& material_of(const BoardFeature& feature) const;

@@ -16,17 +16,20 @@ struct WorldCounters {
   long plane_contact_rhs = 0;     // their right-hand-side evaluations
   long nonsmooth_steps = 0;       // committed sub-steps of the fallback
   long nonsmooth_impulses = 0;    // plastic impulses of the fallback
-  long events = 0;                // events reported
-  long pair_searches = 0;         // stone-stone times of impact (pair_time_of_impact)
-  long pair_search_steps = 0;     // their advancement and polishing steps
-  long pair_gap_checks = 0;       // conservative stone-stone distances (a stone in contact)
-  long broad_phase_tests = 0;     // pairs of bounds the broad phase compared (world/broad_phase.h)
-  long pair_candidates = 0;       // pairs whose bounds met (each then gets a pair test)
-  long pair_impacts = 0;          // stone-stone impacts resolved (of `impacts`)
-  long islands_formed = 0;        // stone-stone islands formed (NonsmoothIsland)
-  long obstacle_wakes = 0;        // resting stones an island woke by acting on them (obstacles)
-  long largest_island = 0;        // the most stones one island was formed with
-  long stages = 0;                // pipeline passes of advance_to (world.h)
+  // Of nonsmooth_impulses, those whose slip direction the local Coulomb law did not find (taken
+  // frictionless; contact/coulomb_plastic_impulse.h).
+  long nonsmooth_frictionless_impulses = 0;
+  long events = 0;             // events reported
+  long pair_searches = 0;      // stone-stone times of impact (pair_time_of_impact)
+  long pair_search_steps = 0;  // their advancement and polishing steps
+  long pair_gap_checks = 0;    // conservative stone-stone distances (a stone in contact)
+  long broad_phase_tests = 0;  // pairs of bounds the broad phase compared (world/broad_phase.h)
+  long pair_candidates = 0;    // pairs whose bounds met (each then gets a pair test)
+  long pair_impacts = 0;       // stone-stone impacts resolved (of `impacts`)
+  long islands_formed = 0;     // stone-stone islands formed (NonsmoothIsland)
+  long obstacle_wakes = 0;     // resting stones an island woke by acting on them (obstacles)
+  long largest_island = 0;     // the most stones one island was formed with
+  long stages = 0;             // pipeline passes of advance_to (world.h)
   // Stones advance_to looked at: the awake ones (flight or contact), one visit each per call. A
   // resting stone is never visited, so a resting board adds nothing here (issue 15: O(1) in
   // resting stones).
