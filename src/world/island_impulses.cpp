@@ -3,6 +3,7 @@
 #include <Eigen/Cholesky>
 #include <Eigen/LU>
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <cstring>
 
@@ -52,12 +53,13 @@ const SweepCompliances::MemberEntry& SweepCompliances::member(std::size_t i,
                                                               const MotionModel& model,
                                                               const RigidBodyState& s) {
   MemberEntry& m = members_[i];
-  const bool same =
-      m.version > 0 &&
-      std::memcmp(m.position_world.data(), s.position_world.data(), 3 * sizeof(double)) == 0 &&
-      std::memcmp(m.orientation.coeffs().data(), s.orientation.coeffs().data(),
-                  4 * sizeof(double)) == 0;
-  if (!same) {
+  // The sweeps change velocities only (every impulse, the held stone's and the obstacles'
+  // included, is applied to v and L), so a member's pose is the one its entry was made at.
+  assert(m.version == 0 ||
+         (std::memcmp(m.position_world.data(), s.position_world.data(), 3 * sizeof(double)) == 0 &&
+          std::memcmp(m.orientation.coeffs().data(), s.orientation.coeffs().data(),
+                      4 * sizeof(double)) == 0));
+  if (m.version == 0) {
     m.position_world = s.position_world;
     m.orientation = s.orientation;
     m.inverse_inertia_world = model.inertia_world(s.orientation).inverse();

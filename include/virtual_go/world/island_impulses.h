@@ -38,9 +38,10 @@ Eigen::Vector3d friction_impulse(const Eigen::Vector3d& n, const Eigen::Matrix3d
 
 // One sub-step's compliances: of each member's board and table contacts (slots 2 i, 2 i + 1) and
 // of each pair contact (K_a + K_b), and each member's inverse world inertia behind them, for the
-// contact points of the sub-step's gather. An entry is reused while the member's pose is the same
-// bit for bit: the impacts hand back their state's validated copy, whose orientation is
-// renormalised (the last bit can change), and then it is computed afresh.
+// contact points of the sub-step's gather. Made after the impacts between members (which hand
+// back validated states, their orientation renormalised): the sweeps change velocities only, so
+// each member's entry, made at its first use, holds for the whole sweep stage (asserted where
+// assertions are compiled in; the package builds with NDEBUG).
 class SweepCompliances {
  public:
   SweepCompliances(std::size_t members, std::size_t pairs);
