@@ -24,6 +24,7 @@
 #include "../contact/settings_format.h"
 #include "../output_folder.h"
 #include "many_method.h"
+#include "virtual_go/world/nonsmooth_island.h"
 
 namespace vg_bench {
 namespace {
@@ -689,14 +690,17 @@ int run(const Options& o) {
 }  // namespace vg_bench
 
 int main(int argc, char** argv) {
-  const char* usage =
+  std::ostringstream limit_s;
+  limit_s << virtual_go::kNonsmoothLargestStepS;
+  const std::string usage =
       "usage: many_benchmark [--quick] [--methods ours,bullet,ode,mujoco] [--counts 1,10,100,361] "
       "[--out DIR] [--nonsmooth-step H_S]\n"
       "  The many-stone benchmark (issue 15): resting boards, two-stone collisions, a stone "
       "thrown\n"
       "  into a cluster, events against the number of stones. --out DIR (made if missing) gets\n"
       "  many_results.csv, many_tables.md, many_settings.md, many_cost.dat; --nonsmooth-step: the\n"
-      "  island sub-step h in s (default the core's). scripts/benchmark.sh --many-only runs it.\n";
+      "  island sub-step h in s, at most the core's verified limit and default, " +
+      limit_s.str() + " s (0: the\n  default). scripts/benchmark.sh --many-only runs it.\n";
   vg_bench::Options o;
   try {
     for (int i = 1; i < argc; ++i) {
@@ -724,6 +728,11 @@ int main(int argc, char** argv) {
   } catch (const std::exception&) {
     std::cerr << "many_benchmark: --counts takes whole numbers and --nonsmooth-step a number\n"
               << usage;
+    return 2;
+  }
+  if (o.nonsmooth_step_s < 0.0 || o.nonsmooth_step_s > virtual_go::kNonsmoothLargestStepS) {
+    std::cerr << "many_benchmark: --nonsmooth-step must be between 0 (the default) and "
+              << limit_s.str() << " s, got " << o.nonsmooth_step_s << "\n";
     return 2;
   }
   return vg_bench::run(o);

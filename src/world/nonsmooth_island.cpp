@@ -34,9 +34,12 @@ void validate_nonsmooth_options(const NonsmoothContactOptions& o) {
   require_positive("nonsmooth/rest_speed_mps", o.rest_speed_mps);
   require_positive("nonsmooth/rest_time_s", o.rest_time_s);
   require_positive("nonsmooth/keep_margin_m", o.keep_margin_m);
-  if (o.step_s > 0.01) {
+  if (o.step_s > kNonsmoothLargestStepS) {
     throw InvalidArgument("nonsmooth/step_s",
-                          "nonsmooth/step_s must be at most 0.01 s, got " + format_value(o.step_s));
+                          "nonsmooth/step_s must be at most " + format_value(kNonsmoothLargestStepS) +
+                              " s (coarser island sub-steps do not keep the island's momentum and "
+                              "rest; nonsmooth_island.h), got " +
+                              format_value(o.step_s));
   }
   require_positive("nonsmooth/zeno_height_m", o.zeno_height_m);
   if (o.max_pair_impacts < 0) {

@@ -17,6 +17,7 @@
 #include "support/flight_reference.h"
 #include "virtual_go/common/validation.h"
 #include "virtual_go/go/go_point.h"
+#include "virtual_go/world/nonsmooth_island.h"
 #include "world/many_stones_support.h"
 #include "world_test_support.h"
 
@@ -712,6 +713,16 @@ TEST(WorldRest, BadCommandsAreRefusedByNameAndChangeNothing) {
   bad = config();
   bad.options.nonsmooth.step_s = 0.0;
   EXPECT_EQ(field_of([&] { vg::World w(bad, before, 0.0); }), "nonsmooth/step_s");
+  // Coarser than the verified island sub-step: refused, naming the limit.
+  bad.options.nonsmooth.step_s = 2.0 * vg::kNonsmoothLargestStepS;
+  EXPECT_EQ(field_of([&] { vg::World w(bad, before, 0.0); }), "nonsmooth/step_s");
+  try {
+    vg::World w(bad, before, 0.0);
+  } catch (const vg::InvalidArgument& e) {
+    EXPECT_NE(std::string(e.what()).find("at most 0.0001 s"), std::string::npos) << e.what();
+  }
+  bad.options.nonsmooth.step_s = vg::kNonsmoothLargestStepS;
+  EXPECT_EQ(field_of([&] { vg::World w(bad, before, 0.0); }), "");
 }
 
 TEST(WorldBoard, WithoutTheBoardTheStoneFliesForeverAtNoSearchCost) {
