@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
-#include <cstring>
 
 namespace virtual_go {
 
@@ -55,15 +54,11 @@ const SweepCompliances::MemberEntry& SweepCompliances::member(std::size_t i,
   MemberEntry& m = members_[i];
   // The sweeps change velocities only (every impulse, the held stone's and the obstacles'
   // included, is applied to v and L), so a member's pose is the one its entry was made at.
-  assert(m.version == 0 ||
-         (std::memcmp(m.position_world.data(), s.position_world.data(), 3 * sizeof(double)) == 0 &&
-          std::memcmp(m.orientation.coeffs().data(), s.orientation.coeffs().data(),
-                      4 * sizeof(double)) == 0));
-  if (m.version == 0) {
+  assert(!m.ready || m.position_world == s.position_world);
+  if (!m.ready) {
     m.position_world = s.position_world;
-    m.orientation = s.orientation;
     m.inverse_inertia_world = model.inertia_world(s.orientation).inverse();
-    ++m.version;
+    m.ready = true;
   }
   return m;
 }
@@ -77,11 +72,10 @@ Eigen::Matrix3d SweepCompliances::compliance(const MemberEntry& m, const MotionM
 const Eigen::Matrix3d& SweepCompliances::board(std::size_t i, int k, const MotionModel& model,
                                                const RigidBodyState& s,
                                                const Eigen::Vector3d& point_world) {
-  const MemberEntry& m = member(i, model, s);
   ContactEntry& c = board_[2 * i + static_cast<std::size_t>(k)];
-  if (c.version_a != m.version) {
-    c.k = compliance(m, model, point_world);
-    c.version_a = m.version;
+  if (!c.ready) {
+    c.k = compliance(member(i, model, s), model, point_world);
+    c.ready = true;
   }
   return c.k;
 }
@@ -105,12 +99,11 @@ const Eigen::Matrix3d& SweepCompliances::pair(std::size_t j, std::size_t a,
                                               std::size_t b, const MotionModel& model_b,
                                               const RigidBodyState& s_b,
                                               const Eigen::Vector3d& point_world) {
-  const MemberEntry &ma = member(a, model_a, s_a), &mb = member(b, model_b, s_b);
   ContactEntry& c = pair_[j];
-  if (c.version_a != ma.version || c.version_b != mb.version) {
-    c.k = compliance(ma, model_a, point_world) + compliance(mb, model_b, point_world);
-    c.version_a = ma.version;
-    c.version_b = mb.version;
+  if (!c.ready) {
+    c.k = compliance(member(a, model_a, s_a), model_a, point_world) +
+          compliance(member(b, model_b, s_b), model_b, point_world);
+    c.ready = true;
   }
   return c.k;
 }

@@ -36,7 +36,8 @@ void validate_nonsmooth_options(const NonsmoothContactOptions& o) {
   require_positive("nonsmooth/keep_margin_m", o.keep_margin_m);
   if (o.step_s > kNonsmoothLargestStepS) {
     throw InvalidArgument("nonsmooth/step_s",
-                          "nonsmooth/step_s must be at most " + format_value(kNonsmoothLargestStepS) +
+                          "nonsmooth/step_s must be at most " +
+                              format_value(kNonsmoothLargestStepS) +
                               " s (coarser island sub-steps do not keep the island's momentum and "
                               "rest; nonsmooth_island.h), got " +
                               format_value(o.step_s));

@@ -28,9 +28,9 @@
 // (friction c below its centre tips it towards mu c / d = 7.3 degrees, at 48 rad/s), and the
 // scheme's lag in that rocking dominates: the frozen slide's symplectic-Euler term mu g T h / 2
 // is only 0.59 um of the 6.4. Checked that the tests can fail: a reference with mu 1 % higher
-// gives orders 0.40, 0.25, 0.14, 0.08 (from h = 4e-4 s); the stack, when the held sweeps did not move the held
-// stone (the board took the whole pair impulse), 0.79 ... 0.62 and P_x 1.15e-6 kg m/s at every h
-// (both stack tests fail on that code).
+// gives orders 0.40, 0.25, 0.14, 0.08 (from h = 4e-4 s); the stack, when the held sweeps did not
+// move the held stone (the board took the whole pair impulse), 0.79 ... 0.62 and P_x 1.15e-6 kg m/s
+// at every h (both stack tests fail on that code).
 #include <gtest/gtest.h>
 
 #include <boost/numeric/odeint.hpp>

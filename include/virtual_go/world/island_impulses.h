@@ -61,17 +61,18 @@ class SweepCompliances {
                               const RigidBodyState& s_b, const Eigen::Vector3d& point_world);
 
  private:
+  // The poses stay through the sweeps (they change velocities only), so an entry, once made, is
+  // valid for the whole sub-step: no pose is stored to compare (asserted on the position).
   struct MemberEntry {
-    long version = 0;  // 0: nothing yet; one more for every pose seen
-    Eigen::Vector3d position_world;
-    Eigen::Quaterniond orientation;
+    bool ready = false;
+    Eigen::Vector3d position_world;  // the compliances' lever arms start here
     Eigen::Matrix3d inverse_inertia_world;
   };
   struct ContactEntry {
-    long version_a = 0, version_b = 0;  // the members' versions it was computed at
+    bool ready = false;
     Eigen::Matrix3d k;
   };
-  // Member i's entry for the pose in s (computed afresh when the pose differs).
+  // Member i's entry (made at the first call of the sub-step).
   const MemberEntry& member(std::size_t i, const MotionModel& model, const RigidBodyState& s);
   Eigen::Matrix3d compliance(const MemberEntry& m, const MotionModel& model,
                              const Eigen::Vector3d& point_world) const;
