@@ -207,7 +207,8 @@ NonsmoothIsland::Lattice NonsmoothIsland::next_lattice() {
   for (std::size_t i = 0; i < n; ++i) {
     if (leaving[i]) next.active[i] = 0;
   }
-  next.energy_j = energy(next.states, next.active);
+  // Nobody left: the states and the active members are the sub-step's, and so is the energy.
+  next.energy_j = next.left.empty() ? step.energy_j : energy(next.states, next.active);
   if (!next.left.empty()) {
     // The members still in form the island anew: their totals and energy from here.
     next.anchor.reset();
@@ -295,7 +296,8 @@ IslandOutcome NonsmoothIsland::advance(double t_end_s, long max_steps) {
   // state), so the energies handed out never rise; when scaling cannot reach it (no kinetic
   // energy, or the potential above it), the next lattice state itself.
   ++counters_.samples;
-  const double next_j = energy(ahead_->states, lattice_.active);
+  const double next_j = ahead_->left.empty() ? ahead_->energy_j  // the same members
+                                             : energy(ahead_->states, lattice_.active);
   Step partial = sub_step(lattice_, since, false);
   IslandOutcome o;
   o.time_s = t_end_s;

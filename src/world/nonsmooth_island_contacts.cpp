@@ -31,6 +31,10 @@ constexpr double kKeepMarginFactor = 10.0;
 
 using nonsmooth_island_detail::apart_by_bounds;
 
+bool same_pose(const LensPose& x, const LensPose& y) {
+  return x.center_world == y.center_world && x.axis_world == y.axis_world;
+}
+
 // A stone pair at a sweep's poses that overlaps or touches: normal from a to b, its gap (m), and
 // the shares of a separation along the normal each member takes (inverse masses; 0 for a member
 // the board holds).
@@ -127,7 +131,7 @@ void NonsmoothIsland::project(std::vector<RigidBodyState>& s, std::vector<Member
         const LensPose pose = pose_of(i);
         // Only gaps and normals are needed here: the table's normal is +z, so its witness point
         // (the dearer part) is never computed.
-        const BoardContact box = members_[i].board.box(pose);
+        const BoardContact& box = board_box(i, pose);
         const double table_gap_m = members_[i].board.table_gap(pose);
         const bool table_deeper = table_gap_m < box.lens.gap_m;
         const double deeper_gap_m = table_deeper ? table_gap_m : box.lens.gap_m;
@@ -349,10 +353,7 @@ const LensPairContact& NonsmoothIsland::pair_distance(std::size_t a, const LensP
   const std::size_t n = members_.size();
   if (pair_memo_.size() != n * n) pair_memo_.assign(n * n, PairMemo{});
   PairMemo& m = pair_memo_[a * n + b];
-  const auto same = [](const LensPose& x, const LensPose& y) {
-    return x.center_world == y.center_world && x.axis_world == y.axis_world;
-  };
-  if (m.valid && same(m.pose_a, pa) && same(m.pose_b, pb)) {
+  if (m.valid && same_pose(m.pose_a, pa) && same_pose(m.pose_b, pb)) {
     if (commit) ++counters_.pair_distance_reuses;
     return m.contact;
   }
@@ -371,6 +372,17 @@ const LensPairContact& NonsmoothIsland::pair_distance(std::size_t a, const LensP
   m.valid = true;
   if (commit) ++counters_.pair_distances;
   return m.contact;
+}
+
+const BoardContact& NonsmoothIsland::board_box(std::size_t i, const LensPose& pose) {
+  if (box_memo_.size() != members_.size()) box_memo_.assign(members_.size(), BoxMemo{});
+  BoxMemo& m = box_memo_[i];
+  if (!m.valid || !same_pose(m.pose, pose)) {
+    m.box = members_[i].board.box(pose);
+    m.pose = pose;
+    m.valid = true;
+  }
+  return m.box;
 }
 
 bool NonsmoothIsland::apart_along_last_normal(std::size_t a, const LensPose& pa, std::size_t b,
@@ -405,7 +417,7 @@ bool NonsmoothIsland::gather(const std::vector<RigidBodyState>& s, std::vector<M
       if (c.lens.gap_m < -kGapToleranceM) clear = false;
       if (c.lens.gap_m <= options_.contact_margin_m) mc[i].contact[mc[i].board++] = c;
     };
-    take(board.box(pose));
+    take(board_box(i, pose));
     // The table's witness point only when it is a contact (never while above the board).
     if (board.table_gap(pose) <= options_.contact_margin_m) take(board.table(pose));
   }

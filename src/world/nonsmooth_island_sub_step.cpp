@@ -211,6 +211,7 @@ NonsmoothIsland::Step NonsmoothIsland::sub_step(const Lattice& lattice_from, dou
     gather(s, out.contacts, pairs, commit);
     energy_out_j = energy(s, lattice_.active);
   }
+  out.energy_j = energy_out_j;
   if (commit) {
     counters_.projection_sweeps += projection_sweeps;
     counters_.velocity_sweeps += velocity_sweeps;

@@ -305,6 +305,7 @@ class NonsmoothIsland {
     std::vector<MemberContacts> contacts;
     std::optional<FreeAnchor> anchor;  // the step was free of the board: the anchor it kept
     std::vector<std::size_t> woken;    // committed: the obstacles it acted on (then not kept)
+    double energy_j = 0.0;             // of the active members at `states`
   };
   // A lattice point: the states handed out there, who is still in, the calm counts.
   struct Lattice {
@@ -342,6 +343,9 @@ class NonsmoothIsland {
   // lens_pair_distance of members a and b at these poses, from the memo when it has them.
   const LensPairContact& pair_distance(std::size_t a, const LensPose& pa, std::size_t b,
                                        const LensPose& pb, bool commit);
+  // BoardDistance::box of member i at this pose, from the memo when the pose is the last one
+  // asked (bitwise): the projection's last check and gather often see the same pose.
+  const BoardContact& board_box(std::size_t i, const LensPose& pose);
   // True when the gap of members a and b along their last normal (the memo's) shows that their
   // push contact's gap exceeds gap_m, without computing their distance.
   bool apart_along_last_normal(std::size_t a, const LensPose& pa, std::size_t b, const LensPose& pb,
@@ -412,6 +416,14 @@ class NonsmoothIsland {
   };
   std::vector<PairMemo> pair_memo_;  // members_.size()^2, by a * n + b; committed sub-steps
   LensPairContact partial_contact_;  // pair_distance's answer in a partial sub-step
+  // Per member, its box contact at the last pose asked. A function of the pose alone, so partial
+  // sub-steps may write it too.
+  struct BoxMemo {
+    bool valid = false;
+    LensPose pose;
+    BoardContact box;
+  };
+  std::vector<BoxMemo> box_memo_;
   std::vector<IslandObstacle> obstacles_;
   std::vector<PairMemo> obstacle_memo_;  // members_.size() * obstacles_.size(), by a * m + o
   std::vector<char> obstacle_acted_;     // per obstacle, in the sub-step being computed
