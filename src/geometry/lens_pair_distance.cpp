@@ -410,8 +410,8 @@ CentreLineContact lens_pair_centre_line(const LensGeometry& lens_a, const LensPo
   const Eigen::Vector3d midpoint = 0.5 * (c.point_a_world + c.point_b_world);
   const bool overlapping = inside_lens(lens_a, pose_a, midpoint, kInsideMarginM) &&
                            inside_lens(lens_b, pose_b, midpoint, kInsideMarginM);
-  const double upper_bound_m = overlapping ? 0.0 : (c.point_b_world - c.point_a_world).norm();
-  along.certain = c.gap_m >= upper_bound_m - 0.5 * gap_tolerance_m;
+  along.upper_bound_m = overlapping ? 0.0 : (c.point_b_world - c.point_a_world).norm();
+  along.certain = c.gap_m >= along.upper_bound_m - 0.5 * gap_tolerance_m;
   return along;
 }
 

@@ -3,6 +3,7 @@
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -392,11 +393,17 @@ bool NonsmoothIsland::apart_along_last_normal(std::size_t a, const LensPose& pa,
   // contact's gap is at most a tolerance below it (lens_pair_distance.h). So above gap_m and
   // twice the tolerance, the pair's push contact is farther than gap_m: a check of one gap
   // instead of the distance (the projection's sweeps re-check pairs that one correction moved).
+  return gap_along_last_normal(a, pa, b, pb) > gap_m + 2.0 * kGapToleranceM;
+}
+
+double NonsmoothIsland::gap_along_last_normal(std::size_t a, const LensPose& pa, std::size_t b,
+                                              const LensPose& pb) const {
   const std::size_t n = members_.size();
-  if (pair_memo_.size() != n * n) return false;
-  const PairMemo& m = pair_memo_[a * n + b];
-  return m.valid && lens_pair_gap_along(members_[a].board.lens(), pa, members_[b].board.lens(), pb,
-                                        m.contact.normal_world) > gap_m + 2.0 * kGapToleranceM;
+  if (pair_memo_.size() != n * n || !pair_memo_[a * n + b].valid) {
+    return -std::numeric_limits<double>::infinity();
+  }
+  return lens_pair_gap_along(members_[a].board.lens(), pa, members_[b].board.lens(), pb,
+                             pair_memo_[a * n + b].contact.normal_world);
 }
 
 bool NonsmoothIsland::gather(const std::vector<RigidBodyState>& s, std::vector<MemberContacts>& mc,
@@ -431,10 +438,23 @@ bool NonsmoothIsland::gather(const std::vector<RigidBodyState>& s, std::vector<M
         continue;
       }
       const LensPose &pa = poses[a], &pb = poses[b];
-      if (apart_along_last_normal(a, pa, b, pb, keep_m)) continue;
-      const LensPairContact c = pair_contact(
-          members_[a].board.lens(), pa, members_[b].board.lens(), pb,
-          [&]() -> const LensPairContact& { return pair_distance(a, pa, b, pb, commit); });
+      const double last_m = gap_along_last_normal(a, pa, b, pb);
+      if (last_m > keep_m + 2.0 * kGapToleranceM) continue;  // apart_along_last_normal
+      const CentreLineContact along = lens_pair_centre_line(
+          members_[a].board.lens(), pa, members_[b].board.lens(), pb, kGapToleranceM);
+      if (!along.certain && last_m > options_.contact_margin_m + 2.0 * kGapToleranceM &&
+          along.upper_bound_m <= keep_m) {
+        // Near but no contact, without the distance: the push contact's gap is at least the
+        // last normal's less the tolerance (lens_pair_distance.h), above the margin, and at most
+        // the distance, which is at most the centre line's upper bound.
+        ++mc[a].near;
+        ++mc[b].near;
+        continue;
+      }
+      const LensPairContact c =
+          along.certain
+              ? along.contact
+              : lens_pair_push_contact(along, pair_distance(a, pa, b, pb, commit), kGapToleranceM);
       if (c.gap_m < -kGapToleranceM) clear = false;
       if (c.gap_m > keep_m) continue;
       ++mc[a].near;

@@ -281,6 +281,42 @@ TEST(LensPairDistance, RandomPairsAgreeWithGjk) {
   EXPECT_GT(rim_rim, 50);
 }
 
+TEST(LensPairDistance, TheCentreLinesUpperBoundIsNeverBelowTheDistance) {
+  // lens_pair_centre_line's upper_bound_m (the distance of its two support points, 0 when their
+  // midpoint lies in both lenses) against GJK's certified lower bound of the distance: an island
+  // counts a pair as near by it without computing the distance (nonsmooth_island_contacts.cpp).
+  Fixture f;
+  int apart = 0, overlapping = 0;
+  double tightest = 1.0;  // smallest upper bound - GJK upper, apart
+  for (int k = 0; k < 3000; ++k) {
+    const auto [a, b] = f.random_pair();
+    const vg::CentreLineContact along =
+        vg::lens_pair_centre_line(f.lens_a, f.pose(a), f.lens_b, f.pose(b), 1e-12);
+    ASSERT_TRUE(along.valid);
+    const vgtest::GjkResult gjk = vgtest::gjk_distance(a, b);
+    if (gjk.overlap || !(gjk.upper > 1e-15)) {
+      ++overlapping;
+      EXPECT_GE(along.upper_bound_m, 0.0) << k;
+      continue;
+    }
+    ++apart;
+    EXPECT_GE(along.upper_bound_m, gjk.lower - kRoundOff) << k;
+    tightest = std::min(tightest, along.upper_bound_m - gjk.upper);
+  }
+  std::cout << "apart " << apart << ", overlapping " << overlapping
+            << "; smallest (upper bound - distance) " << tightest << " m\n";
+  EXPECT_GT(apart, 1000);
+  EXPECT_GT(overlapping, 300);
+  // Flat side by side: the support points are the rims' nearest points, the bound the distance.
+  vgtest::LensReference a{kAa, kC}, b{kAb, kC};
+  a.x = Eigen::Vector3d::Zero();
+  b.x = Eigen::Vector3d(kAa + kAb + 1e-6, 0, 0);
+  a.b = b.b = Eigen::Vector3d::UnitZ();
+  const vg::CentreLineContact flat =
+      vg::lens_pair_centre_line(f.lens_a, f.pose(a), f.lens_b, f.pose(b), 1e-12);
+  EXPECT_NEAR(flat.upper_bound_m, 1e-6, kRoundOff);
+}
+
 TEST(LensPairDistance, NearlyTouchingPairsAgreeWithGjk) {
   // Pairs constructed at a chosen distance: B pushed along a random direction n until the gap
   // along n by the reference supports is delta; then the distance is at least delta (GJK gives

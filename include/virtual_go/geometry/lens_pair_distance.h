@@ -20,6 +20,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <limits>
 
 #include "virtual_go/geometry/lens_distance.h"
 #include "virtual_go/geometry/lens_geometry.h"
@@ -91,6 +92,8 @@ struct CentreLineContact {
   bool valid = false;    // the centres differ: `contact` is the centre line's
   bool certain = false;  // the push contact whatever best is
   LensPairContact contact;
+  // U above (m): the signed distance is at most this (infinite when not valid).
+  double upper_bound_m = std::numeric_limits<double>::infinity();
 };
 CentreLineContact lens_pair_centre_line(const LensGeometry& lens_a, const LensPose& pose_a,
                                         const LensGeometry& lens_b, const LensPose& pose_b,
