@@ -1,5 +1,6 @@
 #include "virtual_go/geometry/lens_distance.h"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
 #include <boost/math/tools/minima.hpp>
@@ -210,6 +211,19 @@ LensContact lens_line_distance(const LensGeometry& lens, const LensPose& pose,
   }
   const Eigen::Vector3d n = std::cos(best_psi) * u1 + std::sin(best_psi) * u2;
   return lens_gap_along(lens, pose, n, n.dot(p0));
+}
+
+Eigen::Vector3d lens_point_carried(const Eigen::Vector3d& point_world, const LensPose& from,
+                                   const LensPose& to) {
+  const Eigen::Vector3d r = point_world - from.center_world;
+  const Eigen::Vector3d w = from.axis_world.cross(to.axis_world);
+  const double c = from.axis_world.dot(to.axis_world);
+  if (!(c > -0.5)) {
+    return to.center_world + Eigen::Quaterniond::FromTwoVectors(from.axis_world, to.axis_world) * r;
+  }
+  // R = 1 + [w] + [w]^2 / (1 + c): the rotation about w by the angle between the axes.
+  const Eigen::Vector3d wr = w.cross(r);
+  return to.center_world + r + wr + w.cross(wr) / (1.0 + c);
 }
 
 }  // namespace virtual_go

@@ -396,6 +396,18 @@ bool NonsmoothIsland::apart_along_last_normal(std::size_t a, const LensPose& pa,
   return gap_along_last_normal(a, pa, b, pb) > gap_m + 2.0 * kGapToleranceM;
 }
 
+double NonsmoothIsland::carried_distance_bound(std::size_t a, const LensPose& pa, std::size_t b,
+                                               const LensPose& pb) const {
+  const std::size_t n = members_.size();
+  if (pair_memo_.size() != n * n || !pair_memo_[a * n + b].valid) {
+    return std::numeric_limits<double>::infinity();
+  }
+  const PairMemo& m = pair_memo_[a * n + b];
+  return (lens_point_carried(m.contact.point_b_world, m.pose_b, pb) -
+          lens_point_carried(m.contact.point_a_world, m.pose_a, pa))
+      .norm();
+}
+
 double NonsmoothIsland::gap_along_last_normal(std::size_t a, const LensPose& pa, std::size_t b,
                                               const LensPose& pb) const {
   const std::size_t n = members_.size();
@@ -440,13 +452,19 @@ bool NonsmoothIsland::gather(const std::vector<RigidBodyState>& s, std::vector<M
       const LensPose &pa = poses[a], &pb = poses[b];
       const double last_m = gap_along_last_normal(a, pa, b, pb);
       if (last_m > keep_m + 2.0 * kGapToleranceM) continue;  // apart_along_last_normal
+      // Near but no contact, without the distance: the push contact's gap is at least the last
+      // normal's less the tolerance (lens_pair_distance.h), above the margin, and at most the
+      // distance, which is at most the last witness points' distance carried to these poses or
+      // the centre line's upper bound.
+      const bool no_contact = last_m > options_.contact_margin_m + 2.0 * kGapToleranceM;
+      if (no_contact && carried_distance_bound(a, pa, b, pb) <= keep_m) {
+        ++mc[a].near;
+        ++mc[b].near;
+        continue;
+      }
       const CentreLineContact along = lens_pair_centre_line(
           members_[a].board.lens(), pa, members_[b].board.lens(), pb, kGapToleranceM);
-      if (!along.certain && last_m > options_.contact_margin_m + 2.0 * kGapToleranceM &&
-          along.upper_bound_m <= keep_m) {
-        // Near but no contact, without the distance: the push contact's gap is at least the
-        // last normal's less the tolerance (lens_pair_distance.h), above the margin, and at most
-        // the distance, which is at most the centre line's upper bound.
+      if (!along.certain && no_contact && along.upper_bound_m <= keep_m) {
         ++mc[a].near;
         ++mc[b].near;
         continue;

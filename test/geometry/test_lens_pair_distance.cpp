@@ -317,6 +317,37 @@ TEST(LensPairDistance, TheCentreLinesUpperBoundIsNeverBelowTheDistance) {
   EXPECT_NEAR(flat.upper_bound_m, 1e-6, kRoundOff);
 }
 
+TEST(LensPairDistance, ACarriedSurfacePointStaysOnTheSurfaceAndTheDistanceBelowIt) {
+  // lens_point_carried: a witness point of a pair carried to new poses of both lenses lies on
+  // their surfaces (to round-off), so the carried points' distance bounds the new distance from
+  // above (the island's near test); axes turned by small angles (a sub-step) and by up to 180
+  // degrees (the shortest rotation's other branch).
+  Fixture f;
+  double worst_surface = 0.0;
+  int apart = 0;
+  for (int k = 0; k < 2000; ++k) {
+    const auto [a, b] = f.random_pair();
+    const vg::LensPairContact c = f.distance(a, b);
+    vgtest::LensReference a2 = a, b2 = b;
+    const double turn = k % 4 == 0 ? 3.1 * f.uniform(f.rng) : 1e-3 * f.uniform(f.rng);
+    a2.b = Eigen::AngleAxisd(turn, f.random_unit()) * a.b;
+    b2.b = Eigen::AngleAxisd(turn, f.random_unit()) * b.b;
+    a2.x = a.x + 1e-4 * f.random_unit();
+    b2.x = b.x + 1e-4 * f.random_unit();
+    const Eigen::Vector3d pa = vg::lens_point_carried(c.point_a_world, f.pose(a), f.pose(a2));
+    const Eigen::Vector3d pb = vg::lens_point_carried(c.point_b_world, f.pose(b), f.pose(b2));
+    worst_surface = std::max({worst_surface, off_surface(a2, pa), off_surface(b2, pb)});
+    const vgtest::GjkResult gjk = vgtest::gjk_distance(a2, b2);
+    if (gjk.overlap || !(gjk.upper > 1e-15)) continue;
+    ++apart;
+    EXPECT_GE((pb - pa).norm(), gjk.lower - kRoundOff) << k;
+  }
+  std::cout << "apart after the move " << apart << "; carried points off the surface by at most "
+            << worst_surface << " m\n";
+  EXPECT_GT(apart, 500);
+  EXPECT_LT(worst_surface, 4 * kRoundOff);
+}
+
 TEST(LensPairDistance, NearlyTouchingPairsAgreeWithGjk) {
   // Pairs constructed at a chosen distance: B pushed along a random direction n until the gap
   // along n by the reference supports is delta; then the distance is at least delta (GJK gives

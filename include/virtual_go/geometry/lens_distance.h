@@ -32,6 +32,13 @@ struct LensPose {
 
 LensPose lens_pose(const RigidBodyState& state);
 
+// A point of the lens at pose `from` carried rigidly to pose `to`: translated with the centre and
+// turned by the shortest rotation from the one axis to the other. The lens is symmetric about its
+// axis, so every rotation taking the one axis to the other maps its surface onto itself: a
+// surface point stays a surface point (whatever the body's turn about its axis was).
+Eigen::Vector3d lens_point_carried(const Eigen::Vector3d& point_world, const LensPose& from,
+                                   const LensPose& to);
+
 struct LensContact {
   double gap_m = 0.0;                                       // signed: > 0 apart, < 0 overlapping
   Eigen::Vector3d point_world = Eigen::Vector3d::Zero();    // on the lens surface

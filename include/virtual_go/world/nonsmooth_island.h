@@ -352,6 +352,10 @@ class NonsmoothIsland {
   // infinity without one): a lower bound of their distance.
   double gap_along_last_normal(std::size_t a, const LensPose& pa, std::size_t b,
                                const LensPose& pb) const;
+  // An upper bound of the distance of members a and b (m): the memo's witness points carried to
+  // these poses (infinity without a memo).
+  double carried_distance_bound(std::size_t a, const LensPose& pa, std::size_t b,
+                                const LensPose& pb) const;
   bool apart_along_last_normal(std::size_t a, const LensPose& pa, std::size_t b, const LensPose& pb,
                                double gap_m) const;
   // The contacts within the margin of the poses in s; false if any overlaps beyond tolerance.
