@@ -73,15 +73,18 @@ NonsmoothIsland::Step NonsmoothIsland::sub_step(const Lattice& lattice_from, dou
   std::vector<Eigen::Vector3d> board_sum(2 * n, Eigen::Vector3d::Zero());
   std::vector<Eigen::Vector3d> pair_sum(pairs.size(), Eigen::Vector3d::Zero());
   SweepCompliances compliances(n, pairs.size());  // the poses stay through the sweeps
+  SweepSettled settled(n, pairs.size());
   for (; !hold && velocity_sweeps < options_.max_sweeps; ++velocity_sweeps) {
     bool acted = false;
     for (std::size_t i = 0; i < n; ++i) {
-      if (board_impulses(i, s, out.contacts, board_sum, compliances, commit)) acted = true;
+      if (board_impulses(i, s, out.contacts, board_sum, compliances, settled, commit)) {
+        acted = true;
+      }
     }
-    if (obstacle_impulses(s, out.contacts, pairs, compliances, commit)) acted = true;
+    if (obstacle_impulses(s, out.contacts, pairs, compliances, settled, commit)) acted = true;
     for (std::size_t j = 0; j < pairs.size(); ++j) {
       const PairContact& p = pairs[j];
-      if (p.obstacle) continue;
+      if (p.obstacle || settled.pair(j, p.a, p.b)) continue;
       const MotionModel &ma = members_[p.a].setup.model, &mb = members_[p.b].setup.model;
       const Eigen::Vector3d u = compliances.point_velocity(p.b, mb, s[p.b], p.point_world) -
                                 compliances.point_velocity(p.a, ma, s[p.a], p.point_world);
@@ -90,14 +93,20 @@ NonsmoothIsland::Step NonsmoothIsland::sub_step(const Lattice& lattice_from, dou
         // Not approaching: the friction its normal impulse so far allows, if it slips.
         if (!may_slip(p.normal_world, u, pair_sum[j], stone_plastic_.friction,
                       kApproachToleranceMps)) {
+          settled.pair_idle(j, p.a, p.b);
           continue;
         }
         const Eigen::Vector3d f = friction_impulse(
             p.normal_world, compliances.pair(j, p.a, ma, s[p.a], p.b, mb, s[p.b], p.point_world), u,
             pair_sum[j], stone_plastic_.friction, kApproachToleranceMps);
-        if (f.isZero()) continue;
+        if (f.isZero()) {
+          settled.pair_idle(j, p.a, p.b);
+          continue;
+        }
         apply_impulse(mb, s[p.b], p.point_world, f);
         apply_impulse(ma, s[p.a], p.point_world, -f);
+        settled.changed(p.a);
+        settled.changed(p.b);
         pair_sum[j] += f;
         acted = true;
         out.contacts[p.a].loaded = out.contacts[p.b].loaded = true;
@@ -138,15 +147,19 @@ NonsmoothIsland::Step NonsmoothIsland::sub_step(const Lattice& lattice_from, dou
             stone_plastic_.friction);
         apply_impulse(moving_model, s[moving], p.point_world, impulse.impulse_world);
         apply_impulse(members_[held].setup.model, s[held], p.point_world, -impulse.impulse_world);
+        settled.changed(moving);
+        settled.changed(held);
         pair_sum[j] += held_a ? impulse.impulse_world : Eigen::Vector3d(-impulse.impulse_world);
         if (commit && impulse.frictionless) ++counters_.frictionless_impulses;
-        board_impulses(held, s, out.contacts, board_sum, compliances, commit);
+        board_impulses(held, s, out.contacts, board_sum, compliances, settled, commit);
       } else {
         const PlasticImpulse impulse = coulomb_plastic_impulse(
             p.normal_world, compliances.pair(j, p.a, ma, s[p.a], p.b, mb, s[p.b], p.point_world), u,
             stone_plastic_.friction);
         apply_impulse(mb, s[p.b], p.point_world, impulse.impulse_world);
         apply_impulse(ma, s[p.a], p.point_world, -impulse.impulse_world);
+        settled.changed(p.a);
+        settled.changed(p.b);
         pair_sum[j] += impulse.impulse_world;
         if (commit && impulse.frictionless) ++counters_.frictionless_impulses;
       }
@@ -278,16 +291,19 @@ void NonsmoothIsland::resolve_pair_impacts(std::vector<RigidBodyState>& s,
 bool NonsmoothIsland::board_impulses(std::size_t i, std::vector<RigidBodyState>& s,
                                      std::vector<MemberContacts>& mc,
                                      std::vector<Eigen::Vector3d>& accumulated,
-                                     SweepCompliances& compliances, bool commit) {
+                                     SweepCompliances& compliances, SweepSettled& settled,
+                                     bool commit) {
   const MemberContacts& m = mc[i];
   const MotionModel& model = members_[i].setup.model;
   bool acted = false;
   for (int k = 0; k < m.board; ++k) {
+    const std::size_t slot = 2 * i + static_cast<std::size_t>(k);
+    if (settled.board(slot, i)) continue;
     const BoardContact& c = m.contact[k];
     const ContactMaterial& material = c.on_table() ? table_plastic_ : board_plastic_;
     const Eigen::Vector3d& n = c.lens.normal_world;
     const Eigen::Vector3d& point = c.lens.point_world;
-    Eigen::Vector3d& sum = accumulated[2 * i + static_cast<std::size_t>(k)];
+    Eigen::Vector3d& sum = accumulated[slot];
     const Eigen::Vector3d u = compliances.point_velocity(i, model, s[i], point);
     if (n.dot(u) < -kApproachToleranceMps) {
       const PlasticImpulse impulse = coulomb_plastic_impulse(
@@ -296,13 +312,20 @@ bool NonsmoothIsland::board_impulses(std::size_t i, std::vector<RigidBodyState>&
       sum += impulse.impulse_world;
       if (commit && impulse.frictionless) ++counters_.frictionless_impulses;
     } else {
-      if (!may_slip(n, u, sum, material.friction, kApproachToleranceMps)) continue;
+      if (!may_slip(n, u, sum, material.friction, kApproachToleranceMps)) {
+        settled.board_idle(slot, i);
+        continue;
+      }
       const Eigen::Vector3d p = friction_impulse(n, compliances.board(i, k, model, s[i], point), u,
                                                  sum, material.friction, kApproachToleranceMps);
-      if (p.isZero()) continue;
+      if (p.isZero()) {
+        settled.board_idle(slot, i);
+        continue;
+      }
       apply_impulse(model, s[i], point, p);
       sum += p;
     }
+    settled.changed(i);
     acted = true;
     mc[i].loaded = true;
     if (commit) ++counters_.impulses;
@@ -313,19 +336,25 @@ bool NonsmoothIsland::board_impulses(std::size_t i, std::vector<RigidBodyState>&
 bool NonsmoothIsland::obstacle_impulses(std::vector<RigidBodyState>& s,
                                         std::vector<MemberContacts>& mc,
                                         const std::vector<PairContact>& pairs,
-                                        SweepCompliances& compliances, bool commit) {
+                                        SweepCompliances& compliances, SweepSettled& settled,
+                                        bool commit) {
   // The member's plastic impulse on a fixed surface (the obstacle's, normal towards the member),
   // by the same local Coulomb law as every other plastic impulse of the sweeps.
   bool acted = false;
-  for (const PairContact& p : pairs) {
-    if (!p.obstacle) continue;
+  for (std::size_t j = 0; j < pairs.size(); ++j) {
+    const PairContact& p = pairs[j];
+    if (!p.obstacle || settled.obstacle(j, p.a)) continue;
     const MotionModel& model = members_[p.a].setup.model;
     const Eigen::Vector3d n = -p.normal_world;
     const Eigen::Vector3d u = compliances.point_velocity(p.a, model, s[p.a], p.point_world);
-    if (!(n.dot(u) < -kApproachToleranceMps)) continue;
+    if (!(n.dot(u) < -kApproachToleranceMps)) {
+      settled.obstacle_idle(j, p.a);
+      continue;
+    }
     const PlasticImpulse impulse = coulomb_plastic_impulse(
         n, compliances.member_at(p.a, model, s[p.a], p.point_world), u, stone_plastic_.friction);
     apply_impulse(model, s[p.a], p.point_world, impulse.impulse_world);
+    settled.changed(p.a);
     if (commit && impulse.frictionless) ++counters_.frictionless_impulses;
     obstacle_acted_[p.b] = 1;
     mc[p.a].loaded = true;

@@ -8,6 +8,7 @@
 
 #include <Eigen/Core>
 #include <cstddef>
+#include <utility>
 #include <vector>
 
 #include "virtual_go/body/motion_model.h"
@@ -78,6 +79,35 @@ class SweepCompliances {
                              const Eigen::Vector3d& point_world) const;
   std::vector<MemberEntry> members_;
   std::vector<ContactEntry> board_, pair_;
+};
+
+// Which contacts of one sub-step's velocity sweeps need no new look: a contact's check depends
+// only on its members' velocities and on its own impulses of the sub-step, so one that found
+// nothing to do finds nothing again until an impulse changes one of its members. The sweeps then
+// skip it: the same impulses in the same order, bit for bit, without re-evaluating the contacts
+// of members the sweep no longer moves. Contacts: board slots 2 i + k and pair indices j (an
+// obstacle pair has one member).
+class SweepSettled {
+ public:
+  SweepSettled(std::size_t members, std::size_t pairs)
+      : version_(members, 0), board_(2 * members, -1), pair_(pairs, {-1, -1}) {}
+  // An impulse changed member i's velocities.
+  void changed(std::size_t i) { ++version_[i]; }
+  bool board(std::size_t slot, std::size_t i) const { return board_[slot] == version_[i]; }
+  void board_idle(std::size_t slot, std::size_t i) { board_[slot] = version_[i]; }
+  bool pair(std::size_t j, std::size_t a, std::size_t b) const {
+    return pair_[j].first == version_[a] && pair_[j].second == version_[b];
+  }
+  void pair_idle(std::size_t j, std::size_t a, std::size_t b) {
+    pair_[j] = {version_[a], version_[b]};
+  }
+  bool obstacle(std::size_t j, std::size_t a) const { return pair_[j].first == version_[a]; }
+  void obstacle_idle(std::size_t j, std::size_t a) { pair_[j].first = version_[a]; }
+
+ private:
+  std::vector<long> version_;                // per member: impulses applied so far
+  std::vector<long> board_;                  // per board slot: its member's version when idle
+  std::vector<std::pair<long, long>> pair_;  // per pair: its members' versions when idle
 };
 
 }  // namespace virtual_go

@@ -111,6 +111,7 @@
 namespace virtual_go {
 
 class SweepCompliances;  // island_impulses.h
+class SweepSettled;      // island_impulses.h
 
 // The largest sub-step h (s) at which the island's promises are verified (the tests run h =
 // 1e-4, 5e-5 and 2.5e-5 s). Coarser steps were measured to break them (2026-11-29, the island and
@@ -330,7 +331,7 @@ class NonsmoothIsland {
   // true if any acted.
   bool board_impulses(std::size_t i, std::vector<RigidBodyState>& s,
                       std::vector<MemberContacts>& mc, std::vector<Eigen::Vector3d>& accumulated,
-                      SweepCompliances& compliances, bool commit);
+                      SweepCompliances& compliances, SweepSettled& settled, bool commit);
   // Step 3's impacts between members (the rule for simultaneous contacts), on s.
   void resolve_pair_impacts(std::vector<RigidBodyState>& s, std::vector<MemberContacts>& mc,
                             const std::vector<PairContact>& pairs, bool free, bool commit);
@@ -405,7 +406,7 @@ class NonsmoothIsland {
   // Plastic impulses at the member-obstacle contacts that approach (step 3): true if any.
   bool obstacle_impulses(std::vector<RigidBodyState>& s, std::vector<MemberContacts>& mc,
                          const std::vector<PairContact>& pairs, SweepCompliances& compliances,
-                         bool commit);
+                         SweepSettled& settled, bool commit);
 
   std::vector<Member> members_;
   ContactMaterial board_plastic_, table_plastic_, stone_plastic_, stone_material_;
