@@ -177,3 +177,28 @@ TEST(IslandImpulses, StoreHandsOutThePosesCompliance) {
 }
 
 }  // namespace
+
+TEST(IslandImpulses, ASettledContactIsLookedAtAgainOnlyWhenAMemberChanges) {
+  // Members 0, 1, 2; board slot 2 (member 1's first), pair 0 (0, 1), obstacle pair 1 (member 2).
+  vg::SweepSettled settled(3, 2);
+  EXPECT_FALSE(settled.board(2, 1));  // nothing looked at yet
+  EXPECT_FALSE(settled.pair(0, 0, 1));
+  EXPECT_FALSE(settled.obstacle(1, 2));
+  settled.board_idle(2, 1);
+  settled.pair_idle(0, 0, 1);
+  settled.obstacle_idle(1, 2);
+  EXPECT_TRUE(settled.board(2, 1));
+  EXPECT_TRUE(settled.pair(0, 0, 1));
+  EXPECT_TRUE(settled.obstacle(1, 2));
+  settled.changed(2);  // an impulse on member 2: only its obstacle contact is looked at again
+  EXPECT_TRUE(settled.board(2, 1));
+  EXPECT_TRUE(settled.pair(0, 0, 1));
+  EXPECT_FALSE(settled.obstacle(1, 2));
+  settled.changed(0);  // on member 0: the pair, either member counts
+  EXPECT_FALSE(settled.pair(0, 0, 1));
+  EXPECT_TRUE(settled.board(2, 1));
+  settled.pair_idle(0, 0, 1);
+  settled.changed(1);
+  EXPECT_FALSE(settled.pair(0, 0, 1));
+  EXPECT_FALSE(settled.board(2, 1));
+}
