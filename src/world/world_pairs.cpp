@@ -114,6 +114,21 @@ double point_speed_from_energy(const WorldBodyModel& body, double kinetic_j) {
 }  // namespace
 
 double World::kinetic_energy_bound(std::size_t k, double dt_s) const {
+  KineticBoundMemo* memo = nullptr;
+  if (bound_search_ > 0) {
+    if (kinetic_memo_.size() < 2 * stones_.size()) kinetic_memo_.resize(2 * stones_.size());
+    for (std::size_t slot = 2 * k; slot < 2 * k + 2; ++slot) {
+      KineticBoundMemo& m = kinetic_memo_[slot];
+      if (m.search == bound_search_ && m.dt_s == dt_s) return m.kinetic_j;
+      if (m.search != bound_search_ && !memo) memo = &m;
+    }
+  }
+  const double kinetic_j = kinetic_energy_bound_now(k, dt_s);
+  if (memo) *memo = KineticBoundMemo{bound_search_, dt_s, kinetic_j};
+  return kinetic_j;
+}
+
+double World::kinetic_energy_bound_now(std::size_t k, double dt_s) const {
   // Kinetic energy <= energy - the lowest potential: a lens lies at least its half thickness c
   // (its smallest reach) above whatever supports it, the table, or the top face while it cannot
   // leave the face within dt_s even at the table floor's speed bound (gravity taken vertical, as
@@ -260,6 +275,12 @@ World::Interaction World::next_interaction(double t_s, long work_limit) {
   Interaction next;
   next.time_s = t_s;
   enter_fallen_asleep();
+  // From here to the return no stone's state changes: the kinetic energy bounds are memoised.
+  struct BoundSearch {
+    long& current;
+    BoundSearch(long& c, long& count) : current(c) { current = ++count; }
+    ~BoundSearch() { current = 0; }
+  } bound_search(bound_search_, bound_searches_);
   if (!config_.stone_contact || stones_.size() < 2 || stones_.all_resting()) return next;
   const auto consider = [&](double time_s, Interaction::Kind kind, std::size_t a, std::size_t b,
                             const PairTimeOfImpact* hit) {

@@ -303,8 +303,9 @@ class World {
   // (its island's) does not rise: kinetic energy at most the energy above the lowest potential
   // (the lens lying flat on the table, or on the top face when it cannot leave it in dt_s).
   double point_speed_bound(std::size_t i, double dt_s) const;
-  // The kinetic energy bound of that rule for stone i alone (J).
+  // The kinetic energy bound of that rule for stone i alone (J); memoised within a pair search.
   double kinetic_energy_bound(std::size_t i, double dt_s) const;
+  double kinetic_energy_bound_now(std::size_t i, double dt_s) const;
   // That bound for stone i, or the sum over its island's members when it is in one (J).
   double shared_kinetic_energy_bound(std::size_t i, double dt_s) const;
   // Bounds (world, m) that awake stone i cannot leave over the next dt_s while its energy (its
@@ -342,6 +343,16 @@ class World {
   // Per stone, scratch of the pair search: an awake stone whose bounds for the whole call meet
   // no other stone's (next_interaction, stage 1).
   std::vector<char> alone_;
+  // kinetic_energy_bound's answers within one pair search (next_interaction: no stone's state
+  // changes between its first bound and its end), per stone for the two spans it asks (the
+  // pass's and the jump's): an island's shared bound sums its members' for each member.
+  struct KineticBoundMemo {
+    long search = -1;  // bound_search_ when written
+    double dt_s = 0.0, kinetic_j = 0.0;
+  };
+  mutable std::vector<KineticBoundMemo> kinetic_memo_;  // 2 per stone
+  long bound_search_ = 0;  // counts pair searches; 0 outside one (no memo)
+  long bound_searches_ = 0;
 };
 
 }  // namespace virtual_go
