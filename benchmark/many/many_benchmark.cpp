@@ -730,7 +730,7 @@ int main(int argc, char** argv) {
               << usage;
     return 2;
   }
-  if (o.nonsmooth_step_s < 0.0 || o.nonsmooth_step_s > virtual_go::kNonsmoothLargestStepS) {
+  if (!(o.nonsmooth_step_s >= 0.0 && o.nonsmooth_step_s <= virtual_go::kNonsmoothLargestStepS)) {
     std::cerr << "many_benchmark: --nonsmooth-step must be between 0 (the default) and "
               << limit_s.str() << " s, got " << o.nonsmooth_step_s << "\n";
     return 2;

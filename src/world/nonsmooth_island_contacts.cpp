@@ -87,11 +87,14 @@ std::optional<Eigen::VectorXd> joint_separations(const std::vector<PairGap>& act
 // `best()` gives lens_pair_distance's contact; it is asked for only when the centre line is not
 // certain to be the answer (a row at rest: the centre line, without the distance's multistart).
 template <typename Best>
-LensPairContact pair_contact(const LensGeometry& a, const LensPose& pa, const LensGeometry& b,
-                             const LensPose& pb, const Best& best) {
-  const CentreLineContact along = lens_pair_centre_line(a, pa, b, pb, kGapToleranceM);
+LensPairContact push_contact(const CentreLineContact& along, const Best& best) {
   if (along.certain) return along.contact;
   return lens_pair_push_contact(along, best(), kGapToleranceM);
+}
+template <typename Best>
+LensPairContact pair_contact(const LensGeometry& a, const LensPose& pa, const LensGeometry& b,
+                             const LensPose& pb, const Best& best) {
+  return push_contact(lens_pair_centre_line(a, pa, b, pb, kGapToleranceM), best);
 }
 
 }  // namespace
@@ -457,22 +460,20 @@ bool NonsmoothIsland::gather(const std::vector<RigidBodyState>& s, std::vector<M
       // distance, which is at most the last witness points' distance carried to these poses or
       // the centre line's upper bound.
       const bool no_contact = last_m > options_.contact_margin_m + 2.0 * kGapToleranceM;
-      if (no_contact && carried_distance_bound(a, pa, b, pb) <= keep_m) {
+      bool near_only = no_contact && carried_distance_bound(a, pa, b, pb) <= keep_m;
+      CentreLineContact along;
+      if (!near_only) {
+        along = lens_pair_centre_line(members_[a].board.lens(), pa, members_[b].board.lens(), pb,
+                                      kGapToleranceM);
+        near_only = no_contact && along.upper_bound_m <= keep_m;
+      }
+      if (near_only) {
         ++mc[a].near;
         ++mc[b].near;
         continue;
       }
-      const CentreLineContact along = lens_pair_centre_line(
-          members_[a].board.lens(), pa, members_[b].board.lens(), pb, kGapToleranceM);
-      if (!along.certain && no_contact && along.upper_bound_m <= keep_m) {
-        ++mc[a].near;
-        ++mc[b].near;
-        continue;
-      }
-      const LensPairContact c =
-          along.certain
-              ? along.contact
-              : lens_pair_push_contact(along, pair_distance(a, pa, b, pb, commit), kGapToleranceM);
+      const LensPairContact c = push_contact(
+          along, [&]() -> const LensPairContact& { return pair_distance(a, pa, b, pb, commit); });
       if (c.gap_m < -kGapToleranceM) clear = false;
       if (c.gap_m > keep_m) continue;
       ++mc[a].near;

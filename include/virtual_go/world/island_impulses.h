@@ -62,8 +62,6 @@ class SweepCompliances {
                               const RigidBodyState& s_b, const Eigen::Vector3d& point_world);
 
  private:
-  // The poses stay through the sweeps (they change velocities only), so an entry, once made, is
-  // valid for the whole sub-step: no pose is stored to compare (asserted on the position).
   struct MemberEntry {
     bool ready = false;
     Eigen::Vector3d position_world;  // the compliances' lever arms start here

@@ -347,8 +347,6 @@ class NonsmoothIsland {
   // BoardDistance::box of member i at this pose, from the memo when the pose is the last one
   // asked (bitwise): the projection's last check and gather often see the same pose.
   const BoardContact& board_box(std::size_t i, const LensPose& pose);
-  // True when the gap of members a and b along their last normal (the memo's) shows that their
-  // push contact's gap exceeds gap_m, without computing their distance.
   // The supporting-plane gap of members a and b along their last normal (the memo's; minus
   // infinity without one): a lower bound of their distance.
   double gap_along_last_normal(std::size_t a, const LensPose& pa, std::size_t b,
@@ -357,6 +355,8 @@ class NonsmoothIsland {
   // these poses (infinity without a memo).
   double carried_distance_bound(std::size_t a, const LensPose& pa, std::size_t b,
                                 const LensPose& pb) const;
+  // True when the gap of members a and b along their last normal (the memo's) shows that their
+  // push contact's gap exceeds gap_m, without computing their distance.
   bool apart_along_last_normal(std::size_t a, const LensPose& pa, std::size_t b, const LensPose& pb,
                                double gap_m) const;
   // The contacts within the margin of the poses in s; false if any overlaps beyond tolerance.
