@@ -4,23 +4,30 @@
 #include <limits>
 
 namespace virtual_go {
+namespace {
 
-void require_finite(const std::string& field, double value) {
+[[noreturn]] void reject(std::string_view field, const std::string& complaint) {
+  throw InvalidArgument(std::string(field), std::string(field) + complaint);
+}
+
+}  // namespace
+
+void require_finite(std::string_view field, double value) {
   if (!std::isfinite(value)) {
-    throw InvalidArgument(field, field + " must be finite, got " + format_value(value));
+    reject(field, " must be finite, got " + format_value(value));
   }
 }
 
-void require_finite(const std::string& field, const Eigen::Vector3d& v) {
+void require_finite(std::string_view field, const Eigen::Vector3d& v) {
   if (!v.allFinite()) {
-    throw InvalidArgument(field, field + " must be finite, got " + format_vector(v));
+    reject(field, " must be finite, got " + format_vector(v));
   }
 }
 
-void require_positive(const std::string& field, double value) {
+void require_positive(std::string_view field, double value) {
   require_finite(field, value);
   if (!(value > 0.0)) {
-    throw InvalidArgument(field, field + " must be positive, got " + format_value(value));
+    reject(field, " must be positive, got " + format_value(value));
   }
 }
 
@@ -40,7 +47,7 @@ std::string norm_text(const Eigen::Vector3d& v) {
   return "= " + format_value(norm);
 }
 
-Eigen::Quaterniond require_unit_quaternion(const std::string& field, const Eigen::Quaterniond& q) {
+Eigen::Quaterniond require_unit_quaternion(std::string_view field, const Eigen::Quaterniond& q) {
   const Eigen::Vector4d c = q.coeffs();
   // The message text is built only on failure: this check runs on every validated state.
   auto text = [&c] {
@@ -48,7 +55,7 @@ Eigen::Quaterniond require_unit_quaternion(const std::string& field, const Eigen
            ", w " + format_value(c[3]) + ")";
   };
   if (!c.allFinite()) {
-    throw InvalidArgument(field, field + " must be finite, got " + text());
+    reject(field, " must be finite, got " + text());
   }
   const double norm = c.norm();
   if (std::isinf(norm) || !(norm > 1e-9)) {
@@ -58,7 +65,7 @@ Eigen::Quaterniond require_unit_quaternion(const std::string& field, const Eigen
     // coefficient first, q has a norm in [1, 2]: any finite, non-zero size is normalised.
     const double largest = c.cwiseAbs().maxCoeff();
     if (!(largest > 0.0)) {
-      throw InvalidArgument(field, field + " must be a non-zero quaternion, got " + text());
+      reject(field, " must be a non-zero quaternion, got " + text());
     }
     const Eigen::Vector4d scaled = c / largest;
     return Eigen::Quaterniond(scaled / scaled.norm());

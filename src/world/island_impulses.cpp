@@ -45,8 +45,11 @@ Eigen::Vector3d friction_impulse(const Eigen::Vector3d& n, const Eigen::Matrix3d
   return alpha * p_t;
 }
 
-SweepCompliances::SweepCompliances(std::size_t members, std::size_t pairs)
-    : members_(members), board_(2 * members), pair_(pairs) {}
+void SweepCompliances::reset(std::size_t members, std::size_t pairs) {
+  members_.assign(members, MemberEntry{});
+  board_.assign(2 * members, ContactEntry{});
+  pair_.assign(pairs, ContactEntry{});
+}
 
 const SweepCompliances::MemberEntry& SweepCompliances::member(std::size_t i,
                                                               const MotionModel& model,

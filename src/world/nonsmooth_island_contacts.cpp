@@ -111,17 +111,24 @@ void NonsmoothIsland::project(std::vector<RigidBodyState>& s, std::vector<Member
                               bool commit, int& sweeps) {
   const std::size_t n = s.size();
   // The board normals each member lies on (within the margin after its board corrections).
-  std::vector<int> supports(n, 0);
-  std::vector<Eigen::Vector3d> support_normal(2 * n);
+  std::vector<int>& supports = projection_.supports;
+  supports.assign(n, 0);
+  std::vector<Eigen::Vector3d>& support_normal = projection_.support_normal;
+  support_normal.resize(2 * n);
   // Corrections only translate, so each member's axis is the same through every sweep.
-  std::vector<Eigen::Vector3d> axis_world(n);
+  std::vector<Eigen::Vector3d>& axis_world = projection_.axis_world;
+  axis_world.resize(n);
   for (std::size_t i = 0; i < n; ++i) axis_world[i] = lens_pose(s[i]).axis_world;
   const auto pose_of = [&](std::size_t i) { return LensPose{s[i].position_world, axis_world[i]}; };
   // A member's board check and a pair's check are functions of the poses alone (a pair's distance
   // at the same poses is its memo's), so one that found no overlap is not repeated until a
   // correction moves a member it involves: the same results as a full sweep, with less work.
-  std::vector<long> moves(n, 0), board_clear_at(n, -1);
-  std::vector<std::pair<long, long>> pair_clear_at(n * n, {-1, -1});
+  std::vector<long>& moves = projection_.moves;
+  std::vector<long>& board_clear_at = projection_.board_clear_at;
+  std::vector<std::pair<long, long>>& pair_clear_at = projection_.pair_clear_at;
+  moves.assign(n, 0);
+  board_clear_at.assign(n, -1);
+  pair_clear_at.assign(n * n, {-1, -1});
   std::vector<PairGap> active, touching;  // a sweep's overlapping and touching pairs
   for (sweeps = 0; sweeps < kMaxProjectionSweeps; ++sweeps) {
     bool corrected = false;
@@ -426,7 +433,8 @@ bool NonsmoothIsland::gather(const std::vector<RigidBodyState>& s, std::vector<M
   const std::size_t n = s.size();
   bool clear = true;
   pairs.clear();
-  std::vector<LensPose> poses(n);  // each member's once, not once per pair
+  std::vector<LensPose>& poses = gather_poses_;  // each member's once, not once per pair
+  poses.assign(n, LensPose{});
   for (std::size_t i = 0; i < n; ++i) {
     if (lattice_.active[i]) poses[i] = lens_pose(s[i]);
   }

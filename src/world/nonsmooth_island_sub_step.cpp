@@ -47,7 +47,8 @@ NonsmoothIsland::Step NonsmoothIsland::sub_step(const Lattice& lattice_from, dou
   // 2. Out of every overlap.
   int projection_sweeps = 0;
   project(s, out.contacts, commit, projection_sweeps);
-  std::vector<PairContact> pairs;
+  std::vector<PairContact>& pairs = sweep_.pairs;
+  pairs.clear();
   bool hold = false;
   if (!gather(s, out.contacts, pairs, commit)) {
     // The sweeps did not remove every overlap: keep the previous poses (below).
@@ -70,10 +71,14 @@ NonsmoothIsland::Step NonsmoothIsland::sub_step(const Lattice& lattice_from, dou
   int velocity_sweeps = 0;
   // Each contact's impulses so far in this sub-step (board: 2 per member; pairs: on b): their
   // normal part bounds the friction a contact that no longer approaches may still give.
-  std::vector<Eigen::Vector3d> board_sum(2 * n, Eigen::Vector3d::Zero());
-  std::vector<Eigen::Vector3d> pair_sum(pairs.size(), Eigen::Vector3d::Zero());
-  SweepCompliances compliances(n, pairs.size());  // the poses stay through the sweeps
-  SweepSettled settled(n, pairs.size());
+  std::vector<Eigen::Vector3d>& board_sum = sweep_.board_sum;
+  std::vector<Eigen::Vector3d>& pair_sum = sweep_.pair_sum;
+  board_sum.assign(2 * n, Eigen::Vector3d::Zero());
+  pair_sum.assign(pairs.size(), Eigen::Vector3d::Zero());
+  SweepCompliances& compliances = sweep_.compliances;  // the poses stay through the sweeps
+  compliances.reset(n, pairs.size());
+  SweepSettled& settled = sweep_.settled;
+  settled.reset(n, pairs.size());
   for (; !hold && velocity_sweeps < options_.max_sweeps; ++velocity_sweeps) {
     bool acted = false;
     for (std::size_t i = 0; i < n; ++i) {

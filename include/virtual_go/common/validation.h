@@ -4,6 +4,7 @@
 #include <Eigen/Geometry>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 #include "virtual_go/common/formatting.h"
 
@@ -30,10 +31,12 @@ class IntegrationError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// Each throws InvalidArgument with `field` as field() and at the start of the message.
-void require_finite(const std::string& field, double value);
-void require_finite(const std::string& field, const Eigen::Vector3d& v);
-void require_positive(const std::string& field, double value);
+// Each throws InvalidArgument with `field` as field() and at the start of the message. The
+// field is a view: these checks run on every validated state, and a std::string parameter would
+// build (and for names past 15 characters allocate) a string on every call, not only on failure.
+void require_finite(std::string_view field, double value);
+void require_finite(std::string_view field, const Eigen::Vector3d& v);
+void require_positive(std::string_view field, double value);
 
 // |v| for any finite v, without the overflow (or underflow) of the plain sum of squares: a
 // component above 1.3e154 makes v.norm() infinite. Infinite only when |v| itself exceeds the
@@ -44,6 +47,6 @@ double norm_without_overflow(const Eigen::Vector3d& v);
 std::string norm_text(const Eigen::Vector3d& v);
 
 // Returns q / |q|; throws for a non-finite or (near) zero quaternion.
-Eigen::Quaterniond require_unit_quaternion(const std::string& field, const Eigen::Quaterniond& q);
+Eigen::Quaterniond require_unit_quaternion(std::string_view field, const Eigen::Quaterniond& q);
 
 }  // namespace virtual_go

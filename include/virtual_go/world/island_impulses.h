@@ -45,7 +45,10 @@ Eigen::Vector3d friction_impulse(const Eigen::Vector3d& n, const Eigen::Matrix3d
 // assertions are compiled in; the package builds with NDEBUG).
 class SweepCompliances {
  public:
-  SweepCompliances(std::size_t members, std::size_t pairs);
+  SweepCompliances() = default;
+  SweepCompliances(std::size_t members, std::size_t pairs) { reset(members, pairs); }
+  // Empty entries for a new sub-step, in the storage already held (no allocation once grown).
+  void reset(std::size_t members, std::size_t pairs);
   // Member i's contact in slot k (0, 1) at point_world.
   const Eigen::Matrix3d& board(std::size_t i, int k, const MotionModel& model,
                                const RigidBodyState& s, const Eigen::Vector3d& point_world);
@@ -87,8 +90,14 @@ class SweepCompliances {
 // obstacle pair has one member).
 class SweepSettled {
  public:
-  SweepSettled(std::size_t members, std::size_t pairs)
-      : version_(members, 0), board_(2 * members, -1), pair_(pairs, {-1, -1}) {}
+  SweepSettled() = default;
+  SweepSettled(std::size_t members, std::size_t pairs) { reset(members, pairs); }
+  // Nothing settled, for a new sub-step, in the storage already held.
+  void reset(std::size_t members, std::size_t pairs) {
+    version_.assign(members, 0);
+    board_.assign(2 * members, -1);
+    pair_.assign(pairs, {-1, -1});
+  }
   // An impulse changed member i's velocities.
   void changed(std::size_t i) { ++version_[i]; }
   bool board(std::size_t slot, std::size_t i) const { return board_[slot] == version_[i]; }

@@ -106,12 +106,10 @@
 #include "virtual_go/flight/integrator.h"
 #include "virtual_go/geometry/lens_pair_distance.h"
 #include "virtual_go/go/board_distance.h"
+#include "virtual_go/world/island_impulses.h"
 #include "virtual_go/world/support_plane.h"
 
 namespace virtual_go {
-
-class SweepCompliances;  // island_impulses.h
-class SweepSettled;      // island_impulses.h
 
 // The largest sub-step h (s) at which the island's promises are verified (the tests run h =
 // 1e-4, 5e-5 and 2.5e-5 s). Coarser steps were measured to break them (2026-11-29, the island and
@@ -436,6 +434,24 @@ class NonsmoothIsland {
   std::vector<IslandObstacle> obstacles_;
   std::vector<PairMemo> obstacle_memo_;  // members_.size() * obstacles_.size(), by a * m + o
   std::vector<char> obstacle_acted_;     // per obstacle, in the sub-step being computed
+  // The velocity stage's working storage, kept between sub-steps so that a sub-step allocates
+  // nothing for it once grown (sub_step is not re-entered; every use starts with a reset).
+  struct SweepScratch {
+    std::vector<PairContact> pairs;
+    std::vector<Eigen::Vector3d> board_sum, pair_sum;  // N s, per board slot and per pair
+    SweepCompliances compliances;
+    SweepSettled settled;
+  };
+  SweepScratch sweep_;
+  // project's working storage, kept likewise (see project in nonsmooth_island_contacts.cpp).
+  struct ProjectionScratch {
+    std::vector<int> supports;
+    std::vector<Eigen::Vector3d> support_normal, axis_world;
+    std::vector<long> moves, board_clear_at;
+    std::vector<std::pair<long, long>> pair_clear_at;
+  };
+  ProjectionScratch projection_;
+  std::vector<LensPose> gather_poses_;  // gather's, kept likewise
 };
 
 }  // namespace virtual_go
