@@ -73,8 +73,13 @@ double body_energy(double mass_kg, const Eigen::Vector3d& position_world,
                    const Eigen::Vector3d& angular_momentum_world,
                    const Eigen::Vector3d& gravity_world) {
   return 0.5 * mass_kg * velocity_world.squaredNorm() +
-         0.5 * angular_velocity_world.dot(angular_momentum_world) -
-         mass_kg * gravity_world.dot(position_world);
+         0.5 * angular_velocity_world.dot(angular_momentum_world) +
+         body_potential_energy(mass_kg, position_world, gravity_world);
+}
+
+double body_potential_energy(double mass_kg, const Eigen::Vector3d& position_world,
+                             const Eigen::Vector3d& gravity_world) {
+  return -(mass_kg * gravity_world.dot(position_world));
 }
 
 double body_energy(const MotionModel& model, const RigidBodyState& state,

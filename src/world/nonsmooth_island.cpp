@@ -216,7 +216,7 @@ NonsmoothIsland::Lattice NonsmoothIsland::next_lattice() {
   } else {
     // The lowest energy so far plus one evaluation's round-off, never above the formation's:
     // the allowance cannot walk upward (the impulses' losses are not won back by round-off).
-    next.ceiling_j = std::min(lattice_.ceiling_j, next.energy_j + energy_round_off(next.states));
+    next.ceiling_j = std::min(lattice_.ceiling_j, next.energy_j + step.round_off_j);
   }
   return next;
 }

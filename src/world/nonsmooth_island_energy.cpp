@@ -15,24 +15,33 @@ double NonsmoothIsland::member_energy(std::size_t i, const RigidBodyState& s) co
 }
 
 double NonsmoothIsland::energy(const std::vector<RigidBodyState>& s,
-                               const std::vector<char>& active) const {
-  double e = 0.0;
+                               const std::vector<char>& active, double* round_off_j) const {
+  // The energy is a sum of terms (potential -m g . x about the world origin, kinetic), each
+  // exact to an ulp or so: 16 epsilon of the sum of their magnitudes bounds its round-off.
+  double e = 0.0, magnitude = 0.0;
   for (std::size_t i = 0; i < s.size(); ++i) {
-    if (active[i]) e += member_energy(i, s[i]);
+    if (!active[i]) continue;
+    const double e_i = member_energy(i, s[i]);
+    e += e_i;
+    if (round_off_j) {
+      const double p = member_potential(i, s[i]);
+      magnitude += std::abs(p) + std::abs(e_i - p);
+    }
   }
+  if (round_off_j) *round_off_j = 16.0 * std::numeric_limits<double>::epsilon() * magnitude;
   return e;
+}
+
+double NonsmoothIsland::member_potential(std::size_t i, const RigidBodyState& s) const {
+  return body_potential_energy(members_[i].setup.model.mass_properties().mass(), s.position_world,
+                               members_[i].setup.gravity_world);
 }
 
 double NonsmoothIsland::potential(const std::vector<RigidBodyState>& s,
                                   const std::vector<char>& active) const {
-  // body_energy with v = L = 0: the one formula, its kinetic terms exactly zero.
   double e = 0.0;
   for (std::size_t i = 0; i < s.size(); ++i) {
-    if (!active[i]) continue;
-    RigidBodyState still = s[i];
-    still.velocity_world.setZero();
-    still.angular_momentum_world.setZero();
-    e += member_energy(i, still);
+    if (active[i]) e += member_potential(i, s[i]);
   }
   return e;
 }
@@ -98,18 +107,9 @@ void NonsmoothIsland::scale_motion(std::vector<RigidBodyState>& s, double factor
 }
 
 double NonsmoothIsland::energy_round_off(const std::vector<RigidBodyState>& s) const {
-  // The energy is a sum of terms (potential -m g . x about the world origin, kinetic), each
-  // exact to an ulp or so: 16 epsilon of the sum of their magnitudes bounds its round-off.
-  double magnitude = 0.0;
-  for (std::size_t i = 0; i < s.size(); ++i) {
-    if (!lattice_.active[i]) continue;
-    RigidBodyState still = s[i];
-    still.velocity_world.setZero();
-    still.angular_momentum_world.setZero();
-    const double p = member_energy(i, still);
-    magnitude += std::abs(p) + std::abs(member_energy(i, s[i]) - p);
-  }
-  return 16.0 * std::numeric_limits<double>::epsilon() * magnitude;
+  double round_off_j = 0.0;
+  energy(s, lattice_.active, &round_off_j);
+  return round_off_j;
 }
 
 bool NonsmoothIsland::scale_kinetic_energy(std::vector<RigidBodyState>& s, double energy_j,

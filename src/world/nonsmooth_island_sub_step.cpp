@@ -187,18 +187,20 @@ NonsmoothIsland::Step NonsmoothIsland::sub_step(const Lattice& lattice_from, dou
   // would change the momenta. (One member has no motion beyond the rigid one: scaled as before.)
   // That allowance never takes it above the energy at the island's formation (ceiling_j), so
   // round-off cannot walk it upward over the sub-steps.
-  const double energy_now_j = energy(s, lattice_.active);
+  double round_off_now_j = 0.0;
+  const double energy_now_j = energy(s, lattice_.active, &round_off_now_j);
   const bool round_off_only =
       free && std::count(lattice_.active.begin(), lattice_.active.end(), 1) > 1 &&
-      energy_now_j - energy_cap_j <= energy_round_off(s) && energy_now_j <= lattice_from.ceiling_j;
-  // The energy handed out: energy_now_j unless the guard or a hold below changes the states.
-  double energy_out_j = energy_now_j;
+      energy_now_j - energy_cap_j <= round_off_now_j && energy_now_j <= lattice_from.ceiling_j;
+  // The energy handed out (and its round-off): energy_now_j unless the guard or a hold below
+  // changes the states.
+  double energy_out_j = energy_now_j, round_off_out_j = round_off_now_j;
   if (!hold && !round_off_only && energy_now_j > energy_cap_j) {
     if (commit) ++counters_.energy_guard_scalings;
     // Free: the motion relative to the rigid motion first (momenta kept), else all of it.
     const bool scaled = (free && scale_kinetic_energy(s, energy_cap_j, true)) ||
                         scale_kinetic_energy(s, energy_cap_j, false);
-    energy_out_j = energy(s, lattice_.active);
+    energy_out_j = energy(s, lattice_.active, &round_off_out_j);
     if (!scaled || energy_out_j > energy_cap_j) {
       hold = true;  // the lift cannot be paid for
     }
@@ -227,9 +229,10 @@ NonsmoothIsland::Step NonsmoothIsland::sub_step(const Lattice& lattice_from, dou
       }
     }
     gather(s, out.contacts, pairs, commit);
-    energy_out_j = energy(s, lattice_.active);
+    energy_out_j = energy(s, lattice_.active, &round_off_out_j);
   }
   out.energy_j = energy_out_j;
+  out.round_off_j = round_off_out_j;
   if (commit) {
     counters_.projection_sweeps += projection_sweeps;
     counters_.velocity_sweeps += velocity_sweeps;

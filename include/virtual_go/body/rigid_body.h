@@ -53,6 +53,11 @@ double body_energy(double mass_kg, const Eigen::Vector3d& position_world,
 // The same for a state under its motion model.
 double body_energy(const MotionModel& model, const RigidBodyState& state,
                    const Eigen::Vector3d& gravity_world);
+// Its potential term, -m g . x (J): body_energy of the same state with v = L = 0, to the bit
+// (its kinetic terms are then exactly zero and x - y is x + (-y)), without the rotation that
+// turns L into omega.
+double body_potential_energy(double mass_kg, const Eigen::Vector3d& position_world,
+                             const Eigen::Vector3d& gravity_world);
 
 // Sets the angular momentum so that the body's world angular velocity is omega_world.
 RigidBodyState with_angular_velocity_world(const MotionModel& model, RigidBodyState state,

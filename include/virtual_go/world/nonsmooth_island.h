@@ -305,6 +305,7 @@ class NonsmoothIsland {
     std::optional<FreeAnchor> anchor;  // the step was free of the board: the anchor it kept
     std::vector<std::size_t> woken;    // committed: the obstacles it acted on (then not kept)
     double energy_j = 0.0;             // of the active members at `states`
+    double round_off_j = 0.0;          // energy_round_off(states)
   };
   // A lattice point: the states handed out there, who is still in, the calm counts.
   struct Lattice {
@@ -361,8 +362,11 @@ class NonsmoothIsland {
   bool gather(const std::vector<RigidBodyState>& s, std::vector<MemberContacts>& mc,
               std::vector<PairContact>& pairs, bool commit);
   Lattice next_lattice();
-  double energy(const std::vector<RigidBodyState>& s, const std::vector<char>& active) const;
+  // Of the active members (J); with round_off_j, also a bound of its round-off there.
+  double energy(const std::vector<RigidBodyState>& s, const std::vector<char>& active,
+                double* round_off_j = nullptr) const;
   double member_energy(std::size_t i, const RigidBodyState& s) const;
+  double member_potential(std::size_t i, const RigidBodyState& s) const;  // body_energy at rest
   double potential(const std::vector<RigidBodyState>& s, const std::vector<char>& active) const;
   // The island's rigid motion (as one body) and each member's share of it.
   struct RigidMotion {
@@ -378,7 +382,7 @@ class NonsmoothIsland {
   // angular momentum stay); false (s unchanged) when that is impossible.
   bool scale_kinetic_energy(std::vector<RigidBodyState>& s, double energy_j,
                             bool keep_momenta) const;
-  // A bound of the round-off in energy(s, active) (J).
+  // A bound of the round-off in energy(s, lattice_.active) (J).
   double energy_round_off(const std::vector<RigidBodyState>& s) const;
   // No active member has a board or table contact within the margin.
   bool free_of_board(const std::vector<MemberContacts>& mc) const;
