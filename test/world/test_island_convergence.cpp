@@ -20,7 +20,7 @@
 //             two bodies, two sustained loaded contacts (board-lower, lower-upper).
 // The error is the largest distance of a stone's centre from the reference's at T = 0.04 s, on
 // the lattice (T = K h exactly: a sample between lattice points is an energy-scaled partial
-// step), for h = 1e-4 (the default and the largest the core accepts) ... 6.25e-6 s; the observed
+// step), for h = the default (the largest the core accepts) and four halvings; the observed
 // order of each halving is log2(E(2h) / E(h)).
 // Measured (centre error at h = 1e-4; orders): slide 6.4 um, 1.000 throughout; abreast 6.4 um,
 // 1.000; push 7.7 um, 1.000; stack 22.5 um, 0.85-0.89 (rising; 0.81 from 4e-4 s, which the core
@@ -52,7 +52,8 @@ using namespace worldtest;
 
 constexpr double kMu = 0.3;
 constexpr double kT = 0.04;  // s: every slide here is still sliding (v0 / (mu g) >= 0.085 s)
-const std::vector<double> kSteps = {1e-4, 5e-5, 2.5e-5, 1.25e-5, 6.25e-6};
+const double kH0 = vg::NonsmoothContactOptions{}.step_s;  // the default, then halved
+const std::vector<double> kSteps = {kH0, kH0 / 2, kH0 / 4, kH0 / 8, kH0 / 16};
 
 vg::ContactMaterial material(double mu) {
   vg::ContactMaterial m;
@@ -348,7 +349,7 @@ void expect_first_order(const Convergence& c, double bound_at_default_m) {
   ASSERT_EQ(kSteps[0], vg::NonsmoothContactOptions{}.step_s);
   EXPECT_LE(c.error_m[0], bound_at_default_m);
 }
-const double kSlideBoundM = 2 * kMu * kG * kT * 1e-4;
+const double kSlideBoundM = 2 * kMu * kG * kT * kH0;
 
 // One stone per entry on the board, alone (the Odeint reference, one body each).
 Reference alone(const std::vector<vg::RigidBodyState>& start) {
@@ -440,7 +441,7 @@ TEST(IslandConvergence, AStoneSlidingOffAnotherConvergesAtFirstOrder) {
   // while the board carries its part of the pair impulse). Horizontal momentum stays the
   // reference's (0: the board is frictionless) to round-off at every h.
   const Convergence c = measure("stack", start, 0.0, reference);
-  expect_first_order(c, kG * kT * 1e-4);
+  expect_first_order(c, kG * kT * kH0);
   for (const double p : c.momentum_error) EXPECT_LE(std::abs(p), 1e-15);
 }
 
@@ -457,7 +458,7 @@ TEST(IslandConvergence, AFrictionlessBoardKeepsTheHorizontalMomentumOfAStack) {
   const vg::RigidBodyState upper =
       at(cap_centre + 2 * kR * normal - kD * normal,
          Quaterniond::FromTwoVectors(Vector3d::UnitZ(), normal), Vector3d::Zero());
-  for (const double h : {1e-4, 2.5e-5}) {
+  for (const double h : {kH0, kH0 / 4}) {
     const vg::BoardDistance board(vg::LensGeometry(stone().shape), vg::BoardGeometry{});
     std::vector<vg::IslandBody> bodies;
     for (const vg::RigidBodyState& s : {lower, upper})

@@ -558,8 +558,8 @@ void expect_rest_like_the_default(const char* name, const std::vector<RestRun>& 
 }
 
 TEST(WorldCradle, OnARealBoardTheRowRestsAtFinerIslandSteps) {
-  const std::vector<double> steps = {1e-4, 5e-5, 2.5e-5};
-  ASSERT_EQ(steps[0], vg::NonsmoothContactOptions{}.step_s);
+  const double h0 = vg::NonsmoothContactOptions{}.step_s;
+  const std::vector<double> steps = {h0, h0 / 2, h0 / 4};
   std::vector<RestRun> runs;
   for (const double h : steps) {
     Cradle cr(3, Striker::flying_over_the_board, 0.8, 0.3, 0.3, 0.3,
@@ -572,7 +572,8 @@ TEST(WorldCradle, OnARealBoardTheRowRestsAtFinerIslandSteps) {
 TEST(WorldCradle, APileOfTwoRestsAtFinerIslandSteps) {
   // A stone falling tilted 15 degrees onto the rim of a flat one comes to lean on it, its cap on
   // the board: two stones, three loaded contacts (board-lower, board-upper, upper-lower), mu 0.3.
-  const std::vector<double> steps = {1e-4, 5e-5, 2.5e-5};
+  const double h0 = vg::NonsmoothContactOptions{}.step_s;
+  const std::vector<double> steps = {h0, h0 / 2, h0 / 4};
   std::vector<RestRun> runs;
   for (const double h : steps) {
     vg::WorldConfig c = config(0.8, 0.3, kRollingM, 15e-6);
