@@ -317,13 +317,16 @@ IslandOutcome NonsmoothIsland::advance(double t_end_s, long max_steps) {
   }
   std::optional<RigidMotion> rigid;
   bool scaled = false;
-  if (free) {
-    rigid = rigid_motion(partial.states);
-    scaled = scale_kinetic_energy(partial.states, next_j, true);
+  const Kept kept = kept_totals(partial.contacts);
+  if (kept != Kept::none) {
+    rigid = rigid_motion(partial.states, kept);
+    scaled = scale_kinetic_energy(partial.states, next_j, kept);
   }
-  if (!scaled) {
+  // Keeping the horizontal totals, the next lattice state keeps them too (they do not change
+  // with time there): it, rather than all of the motion scaled.
+  if (!scaled && kept != Kept::horizontal) {
     rigid.reset();
-    scaled = scale_kinetic_energy(partial.states, next_j, false);
+    scaled = scale_kinetic_energy(partial.states, next_j, Kept::none);
   }
   // Round-off can leave it ulps below next_j: grow it back as little as needed (by a millionth
   // at most: more is not round-off).
