@@ -9,6 +9,13 @@
 #include "virtual_go/world/nonsmooth_island.h"
 
 namespace virtual_go {
+namespace {
+
+// The largest factor by which scale_kinetic_energy grows the motion beyond the kept rigid
+// motion (a sample whose partial sub-step lost more energy than the whole sub-step).
+constexpr double kLargestGrowth = 2.0;
+
+}  // namespace
 
 double NonsmoothIsland::member_energy(std::size_t i, const RigidBodyState& s) const {
   return body_energy(members_[i].setup.model, s, members_[i].setup.gravity_world);
@@ -138,9 +145,9 @@ bool NonsmoothIsland::scale_kinetic_energy(std::vector<RigidBodyState>& s, doubl
   const double kinetic = energy(s, lattice_.active) - fixed;
   const double target = energy_j - fixed;
   if (!(target >= 0.0) || !(kinetic > 0.0)) return false;
-  // The relative motion is only taken from, never grown: when it is almost gone (a row moving
+  // The relative motion may grow by a bounded factor only: when it is almost gone (a row moving
   // as one) the factor that grows it to a round-off's worth of energy would be any number.
-  if (keep && target > kinetic) return false;
+  if (keep && target > kLargestGrowth * kLargestGrowth * kinetic) return false;
   std::vector<RigidBodyState> scaled = s;
   scale_motion(scaled, std::sqrt(target / kinetic), keep);
   // The scaled energy can come out a few ulps above the target: shrink a little more (never by
