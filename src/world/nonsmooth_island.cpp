@@ -304,11 +304,17 @@ IslandOutcome NonsmoothIsland::advance(double t_end_s, long max_steps) {
   // Free of the board: as it is when its energy is next_j to round-off, else the motion
   // relative to the rigid motion scaled (momenta kept), else all of it.
   const bool free = free_of_board(partial.contacts);
-  const double partial_j = energy(partial.states, lattice_.active);
-  if (free && std::count(lattice_.active.begin(), lattice_.active.end(), 1) > 1 &&
-      std::abs(partial_j - next_j) <= energy_round_off(partial.states) &&
-      partial_j <= lattice_.energy_j + energy_round_off(partial.states) &&
-      partial_j <= lattice_.ceiling_j) {
+  const double partial_j = partial.energy_j;  // and its round-off, from the sub-step
+  const double round_off_j = partial.round_off_j;
+  // Free with two members or more, a sample may lie above the previous lattice energy by its
+  // round-off, never above the ceiling, as the lattice states may (sub_step, step 4).
+  const bool free_allowance =
+      free && std::count(lattice_.active.begin(), lattice_.active.end(), 1) > 1;
+  auto allowed = [&](double e_j) {
+    return e_j <= std::max(lattice_.energy_j, next_j) ||
+           (free_allowance && e_j <= lattice_.energy_j + round_off_j && e_j <= lattice_.ceiling_j);
+  };
+  if (free_allowance && std::abs(partial_j - next_j) <= round_off_j && allowed(partial_j)) {
     o.states = partial.states;
     for (std::size_t i = 0; i < o.states.size(); ++i) {
       if (!lattice_.active[i]) o.states[i] = lattice_.states[i];
@@ -317,13 +323,16 @@ IslandOutcome NonsmoothIsland::advance(double t_end_s, long max_steps) {
   }
   std::optional<RigidMotion> rigid;
   bool scaled = false;
-  if (free) {
-    rigid = rigid_motion(partial.states);
-    scaled = scale_kinetic_energy(partial.states, next_j, true);
+  const Kept kept = kept_totals(partial.contacts);
+  if (kept != Kept::none) {
+    rigid = rigid_motion(partial.states, kept);
+    scaled = scale_kinetic_energy(partial.states, next_j, kept);
   }
-  if (!scaled) {
+  // Keeping the horizontal totals, the next lattice state keeps them too (they do not change
+  // with time there): it, rather than all of the motion scaled.
+  if (!scaled && kept != Kept::horizontal) {
     rigid.reset();
-    scaled = scale_kinetic_energy(partial.states, next_j, false);
+    scaled = scale_kinetic_energy(partial.states, next_j, Kept::none);
   }
   // Round-off can leave it ulps below next_j: grow it back as little as needed (by a millionth
   // at most: more is not round-off).
@@ -332,7 +341,7 @@ IslandOutcome NonsmoothIsland::advance(double t_end_s, long max_steps) {
     scale_motion(partial.states, 1.0 + grow, rigid ? &*rigid : nullptr);
   }
   const double e = energy(partial.states, lattice_.active);
-  if (scaled && e >= next_j && e <= lattice_.energy_j) {
+  if (scaled && e >= next_j && allowed(e)) {
     o.states = partial.states;
   } else {
     o.states = ahead_->states;

@@ -107,6 +107,24 @@ bool NonsmoothIsland::free_of_board(const std::vector<MemberContacts>& mc) const
   return true;
 }
 
+NonsmoothIsland::Kept NonsmoothIsland::kept_totals(const std::vector<MemberContacts>& mc) const {
+  if (free_of_board(mc)) return Kept::all;
+  // A frictionless contact on a horizontal face pushes along the vertical only: no horizontal
+  // force and no torque about the vertical.
+  for (std::size_t i = 0; i < mc.size(); ++i) {
+    if (!lattice_.active[i]) continue;
+    if (mc[i].obstacles > 0) return Kept::none;
+    for (int k = 0; k < mc[i].board; ++k) {
+      const BoardContact& c = mc[i].contact[k];
+      const ContactMaterial& material = c.on_table() ? table_plastic_ : board_plastic_;
+      if (material.friction != 0.0 || !c.lens.normal_world.head<2>().isZero(0.0)) {
+        return Kept::none;
+      }
+    }
+  }
+  return Kept::horizontal;
+}
+
 void NonsmoothIsland::project(std::vector<RigidBodyState>& s, std::vector<MemberContacts>& mc,
                               bool commit, int& sweeps) {
   const std::size_t n = s.size();

@@ -9,6 +9,13 @@
 #include "virtual_go/world/nonsmooth_island.h"
 
 namespace virtual_go {
+namespace {
+
+// The largest factor by which scale_kinetic_energy grows the motion beyond the kept rigid
+// motion (a sample whose partial sub-step lost more energy than the whole sub-step).
+constexpr double kLargestGrowth = 2.0;
+
+}  // namespace
 
 double NonsmoothIsland::member_energy(std::size_t i, const RigidBodyState& s) const {
   return body_energy(members_[i].setup.model, s, members_[i].setup.gravity_world);
@@ -46,14 +53,16 @@ double NonsmoothIsland::potential(const std::vector<RigidBodyState>& s,
   return e;
 }
 
-NonsmoothIsland::RigidMotion NonsmoothIsland::rigid_motion(
-    const std::vector<RigidBodyState>& s) const {
+NonsmoothIsland::RigidMotion NonsmoothIsland::rigid_motion(const std::vector<RigidBodyState>& s,
+                                                           Kept kept) const {
   // The island as one rigid body: centre of mass X, velocity V, inertia about X
   // I = sum (I_i + m_i (|r_i|^2 1 - r_i r_i^T)), angular momentum about X L = sum (L_i + m_i r_i x
   // (v_i - V)), Omega = I^-1 L. Each member's share: v_i = V + Omega x r_i, L_i = I_i Omega.
   // The rest of the motion carries no momentum and no angular momentum, and its kinetic energy
   // adds to the rigid motion's (the cross terms are V . sum m dv + Omega . (sum m r x dv + I_i
-  // dw) = 0).
+  // dw) = 0). Horizontal: V's horizontal part and Omega = L_z / I_zz about the vertical; the
+  // cross terms are then V_h . (sum m dv)_h + Omega_z (sum m r x dv + I_i dw)_z = 0, the rest
+  // carrying no horizontal momentum and no L_z.
   const std::size_t n = s.size();
   double mass = 0.0;
   Eigen::Vector3d centre = Eigen::Vector3d::Zero(), momentum = Eigen::Vector3d::Zero();
@@ -65,7 +74,9 @@ NonsmoothIsland::RigidMotion NonsmoothIsland::rigid_motion(
     momentum += m * s[i].velocity_world;
   }
   centre /= mass;
-  const Eigen::Vector3d v_centre = momentum / mass;
+  Eigen::Vector3d v_centre = momentum / mass;
+  const bool horizontal = kept == Kept::horizontal;
+  if (horizontal) v_centre.z() = 0.0;
   Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();
   Eigen::Vector3d spin = Eigen::Vector3d::Zero();
   std::vector<Eigen::Matrix3d> own(n, Eigen::Matrix3d::Zero());
@@ -77,7 +88,8 @@ NonsmoothIsland::RigidMotion NonsmoothIsland::rigid_motion(
     inertia += own[i] + m * (r.squaredNorm() * Eigen::Matrix3d::Identity() - r * r.transpose());
     spin += s[i].angular_momentum_world + m * r.cross(s[i].velocity_world - v_centre);
   }
-  const Eigen::Vector3d omega = inertia.ldlt().solve(spin);
+  const Eigen::Vector3d omega = horizontal ? Eigen::Vector3d(0.0, 0.0, spin.z() / inertia(2, 2))
+                                           : Eigen::Vector3d(inertia.ldlt().solve(spin));
   RigidMotion rigid;
   rigid.centre_world = centre;
   rigid.inertia_world = inertia;
@@ -113,15 +125,15 @@ double NonsmoothIsland::energy_round_off(const std::vector<RigidBodyState>& s) c
 }
 
 bool NonsmoothIsland::scale_kinetic_energy(std::vector<RigidBodyState>& s, double energy_j,
-                                           bool keep_momenta) const {
+                                           Kept kept) const {
   // Velocity and angular momentum of all members scaled together: the kinetic energy is
-  // quadratic in them, the potential energy and the poses do not change. Keeping the momenta
-  // (an island free of the board: only internal forces act), the motion relative to the island's
-  // rigid motion is scaled instead, and the rigid motion is kept.
+  // quadratic in them, the potential energy and the poses do not change. Keeping totals (only
+  // internal forces act on them), the motion relative to the rigid motion that carries them is
+  // scaled instead, and that rigid motion is kept.
   std::optional<RigidMotion> rigid;
   double fixed = potential(s, lattice_.active);
-  if (keep_momenta) {
-    rigid = rigid_motion(s);
+  if (kept != Kept::none) {
+    rigid = rigid_motion(s, kept);
     std::vector<RigidBodyState> r = s;
     for (std::size_t i = 0; i < r.size(); ++i) {
       r[i].velocity_world = rigid->velocity_world[i];
@@ -133,9 +145,9 @@ bool NonsmoothIsland::scale_kinetic_energy(std::vector<RigidBodyState>& s, doubl
   const double kinetic = energy(s, lattice_.active) - fixed;
   const double target = energy_j - fixed;
   if (!(target >= 0.0) || !(kinetic > 0.0)) return false;
-  // The relative motion is only taken from, never grown: when it is almost gone (a row moving
+  // The relative motion may grow by a bounded factor only: when it is almost gone (a row moving
   // as one) the factor that grows it to a round-off's worth of energy would be any number.
-  if (keep && target > kinetic) return false;
+  if (keep && target > kLargestGrowth * kLargestGrowth * kinetic) return false;
   std::vector<RigidBodyState> scaled = s;
   scale_motion(scaled, std::sqrt(target / kinetic), keep);
   // The scaled energy can come out a few ulps above the target: shrink a little more (never by

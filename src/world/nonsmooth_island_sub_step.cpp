@@ -197,9 +197,11 @@ NonsmoothIsland::Step NonsmoothIsland::sub_step(const Lattice& lattice_from, dou
   double energy_out_j = energy_now_j, round_off_out_j = round_off_now_j;
   if (!hold && !round_off_only && energy_now_j > energy_cap_j) {
     if (commit) ++counters_.energy_guard_scalings;
-    // Free: the motion relative to the rigid motion first (momenta kept), else all of it.
-    const bool scaled = (free && scale_kinetic_energy(s, energy_cap_j, true)) ||
-                        scale_kinetic_energy(s, energy_cap_j, false);
+    // The motion relative to the rigid motion that carries the kept totals first, else all of
+    // it.
+    const Kept kept = kept_totals(out.contacts);
+    const bool scaled = (kept != Kept::none && scale_kinetic_energy(s, energy_cap_j, kept)) ||
+                        scale_kinetic_energy(s, energy_cap_j, Kept::none);
     energy_out_j = energy(s, lattice_.active, &round_off_out_j);
     if (!scaled || energy_out_j > energy_cap_j) {
       hold = true;  // the lift cannot be paid for
