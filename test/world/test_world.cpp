@@ -719,7 +719,7 @@ TEST(WorldRest, BadCommandsAreRefusedByNameAndChangeNothing) {
   try {
     vg::World w(bad, before, 0.0);
   } catch (const vg::InvalidArgument& e) {
-    EXPECT_NE(std::string(e.what()).find("at most 0.0001 s"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("at most 0.0002 s"), std::string::npos) << e.what();
   }
   bad.options.nonsmooth.step_s = vg::kNonsmoothLargestStepS;
   EXPECT_EQ(field_of([&] { vg::World w(bad, before, 0.0); }), "");
