@@ -75,7 +75,8 @@ class OursMany : public ManyMethod {
          "exact pair time of impact between closed-form motions, Stronge's two-body impact "
          "(energetic e*, Coulomb friction through the impulse); a stone in contact or a "
          "resting partner: an island of the fixed-step nonsmooth scheme (Moreau-Jean, e = 0, "
-         "h = 0.1 ms)",
+         "h = " +
+             num(world_->config().options.nonsmooth.step_s) + " s)",
          "docs/physics.md, \"Stone-stone contact in the world\""},
         {"rest",
          "exact: a stone set down flat rests at once; a resting stone is skipped by "

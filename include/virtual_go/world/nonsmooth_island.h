@@ -126,8 +126,8 @@ namespace virtual_go {
 // 2e-3 s; the samples' momentum between lattice points is kept at every one of them): at 3e-4 s
 // the real-board cradle comes to rest another way than at h / 2 and h / 4 (0.218 s against 0.983
 // and 0.917 s); at 5e-4 s the samples of test_world_pair_impacts' fast random pairs miss their
-// momentum by 2.1e-4; at 2e-3 s a stone thrown into a block leaves it unrested after 20 s (docs/physics.md,
-// "Coarser still" and "The samples' momentum at a coarse step").
+// momentum by 2.1e-4; at 2e-3 s a stone thrown into a block leaves it unrested after 20 s
+// (docs/physics.md, "Coarser still" and "The samples' momentum at a coarse step").
 inline constexpr double kNonsmoothLargestStepS = 2e-4;
 
 struct NonsmoothContactOptions {
