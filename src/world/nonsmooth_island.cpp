@@ -301,8 +301,9 @@ IslandOutcome NonsmoothIsland::advance(double t_end_s, long max_steps) {
   Step partial = sub_step(lattice_, since, false);
   IslandOutcome o;
   o.time_s = t_end_s;
-  // Free of the board: as it is when its energy is next_j to round-off, else the motion
-  // relative to the rigid motion scaled (momenta kept), else all of it.
+  // Free of the board: as it is when its energy is next_j to round-off. Else the motion beyond
+  // the rigid motion that carries the kept totals (kept_totals) scaled, else all of it (on the
+  // frictionless board: lattice state k+1 instead, which keeps them).
   const bool free = free_of_board(partial.contacts);
   const double partial_j = partial.energy_j;  // and its round-off, from the sub-step
   const double round_off_j = partial.round_off_j;

@@ -245,7 +245,7 @@ TEST(IslandContact, ARowStruckAtOneEndMovesOnAsOneBody) {
       board_normal_ns / (5 * mass() * kG * h));
   EXPECT_GE(momentum, mass() * v0 - mu * board_normal_ns - 1e-15);
   // One body: every stone at the row's velocity, its momentum over 5 m (v0 / 5 less the friction
-  // above: about mu g h, 0.5 % of v0 / 5 at h = 1e-4 s).
+  // above: about mu g h, 1 % of v0 / 5 at h = 2e-4 s).
   EXPECT_NEAR(slowest, momentum / (5 * mass()), 0.01 * v0 / 5);
   EXPECT_NEAR(fastest, momentum / (5 * mass()), 0.01 * v0 / 5);
   Watch w;

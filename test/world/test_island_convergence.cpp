@@ -22,15 +22,15 @@
 // the lattice (T = K h exactly: a sample between lattice points is an energy-scaled partial
 // step), for h = the default (the largest the core accepts) and four halvings; the observed
 // order of each halving is log2(E(2h) / E(h)).
-// Measured (centre error at h = 1e-4; orders): slide 6.4 um, 1.000 throughout; abreast 6.4 um,
-// 1.000; push 7.7 um, 1.000; stack 22.5 um, 0.85-0.89 (rising; 0.81 from 4e-4 s, which the core
-// no longer accepts), horizontal momentum 0 to 1e-18 kg m/s. A sliding lens rocks
-// (friction c below its centre tips it towards mu c / d = 7.3 degrees, at 48 rad/s), and the
-// scheme's lag in that rocking dominates: the frozen slide's symplectic-Euler term mu g T h / 2
-// is only 0.59 um of the 6.4. Checked that the tests can fail: a reference with mu 1 % higher
-// gives orders 0.40, 0.25, 0.14, 0.08 (from h = 4e-4 s); the stack, when the held sweeps did not
-// move the held stone (the board took the whole pair impulse), 0.79 ... 0.62 and P_x 1.15e-6 kg m/s
-// at every h (both stack tests fail on that code).
+// Measured (centre error at the default h = 2e-4 s; orders down to 1.25e-5 s): slide 12.8 um,
+// 1.000 throughout; abreast 12.8 um, 1.000; push 15.5 um, 1.000; stack 39.9 um, 0.82-0.87
+// (rising; 6.4, 6.4, 7.7 and 22.5 um at 1e-4 s), horizontal momentum 0 to 1e-18 kg m/s. A sliding
+// lens rocks (friction c below its centre tips it towards mu c / d = 7.3 degrees, at 48 rad/s), and
+// the scheme's lag in that rocking dominates: the frozen slide's symplectic-Euler term mu g T h / 2
+// is only 0.59 um of the 6.4 at 1e-4 s. Checked that the tests can fail: a reference with mu 1 %
+// higher gives orders 0.40, 0.25, 0.14, 0.08 (from h = 4e-4 s); the stack, when the held sweeps did
+// not move the held stone (the board took the whole pair impulse), 0.79 ... 0.62 and P_x 1.15e-6 kg
+// m/s at every h (both stack tests fail on that code).
 #include <gtest/gtest.h>
 
 #include <boost/numeric/odeint.hpp>

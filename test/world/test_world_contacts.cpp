@@ -196,14 +196,14 @@ TEST(WorldContacts, AStoneDroppedOnARestingStoneWakesItAndNeverPassesThrough) {
 
 // The work budget covers the pair search and the islands: the drop above (its costly part,
 // two stones in plane contact side by side, is in its first 0.5 s) with about a grid interval's
-// sub-steps per call (10 units at the default h). Every
-// call makes progress and stays within the bound (world.h: 2 max_steps, plus one pass's pair work
-// and one unit per stone or island in contact; a handful here), and the states are the same as
-// without a budget at the times both reach (the budget only cuts the work into calls).
+// sub-steps per call (1 ms / h units). Every call makes progress and stays within the bound
+// (world.h: 2 max_steps, plus one pass's pair work and one unit per stone or island in contact; a
+// handful here), and the states are the same as without a budget at the times both reach (the
+// budget only cuts the work into calls).
 TEST(WorldContacts, AWorkBudgetBoundsThePairSearchAndTheIslands) {
   Dropped budgeted, free_run;
-  // About one grid interval's island sub-steps (10 at the default h): with the pair search's work
-  // on top, the drop's calls exceed it.
+  // About one grid interval's island sub-steps (1 ms / h): with the pair search's work on top,
+  // the drop's calls exceed it.
   const long grid_steps = std::lround(1e-3 / vg::NonsmoothContactOptions{}.step_s);
   const vg::WorkBudget budget{std::max(1L, grid_steps)};
   std::vector<vg::WorldEvent> events;

@@ -541,7 +541,7 @@ RestRun run_to_rest(vg::World& world, std::vector<vg::WorldEvent>& events, doubl
   return r;
 }
 
-// The rest time at each h is within this of the one at the default h (1e-4 s).
+// The rest time at each h is within this of the one at the default h.
 void expect_rest_like_the_default(const char* name, const std::vector<RestRun>& runs,
                                   const std::vector<double>& steps) {
   for (std::size_t j = 0; j < runs.size(); ++j) {
