@@ -10,6 +10,7 @@
 #include "nonsmooth_island_impl.h"
 #include "virtual_go/common/validation.h"
 #include "virtual_go/contact/time_of_impact.h"
+#include "virtual_go/world/world_body.h"
 
 namespace virtual_go {
 namespace {
@@ -34,6 +35,14 @@ void validate_nonsmooth_options(const NonsmoothContactOptions& o) {
   require_positive("nonsmooth/rest_speed_mps", o.rest_speed_mps);
   require_positive("nonsmooth/rest_time_s", o.rest_time_s);
   require_positive("nonsmooth/keep_margin_m", o.keep_margin_m);
+  for (const auto& [field, value] :
+       {std::pair<const char*, double>{"nonsmooth/keep_s_per_mps", o.keep_s_per_mps},
+        {"nonsmooth/keep_join_m", o.keep_join_m}}) {
+    if (!(std::isfinite(value) && value >= 0.0)) {
+      throw InvalidArgument(
+          field, std::string(field) + " must be finite and at least 0, got " + format_value(value));
+    }
+  }
   if (o.step_s > kNonsmoothLargestStepS) {
     throw InvalidArgument("nonsmooth/step_s",
                           "nonsmooth/step_s must be at most " +
@@ -84,10 +93,11 @@ NonsmoothIsland::NonsmoothIsland(std::vector<IslandBody> bodies,
   }
   for (IslandBody& b : bodies) {
     lattice_.states.push_back(b.state.validated());
-    members_.push_back(Member{b.board, b.setup, b.board_enabled});
+    members_.push_back(Member{b.board, b.setup, b.board_enabled, b.lowest_potential_j});
   }
   lattice_.active.assign(members_.size(), 1);
   lattice_.calm_steps.assign(members_.size(), 0);
+  lattice_.keep_margin_m = options_.keep_margin_m;
   // Contacts between members that approach at formation are impacts at that instant (all gaps
   // within the margin close together: the vanishing gaps of Newton's cradle), before any flight.
   std::vector<MemberContacts> contacts(members_.size());
@@ -218,7 +228,28 @@ NonsmoothIsland::Lattice NonsmoothIsland::next_lattice() {
     // the allowance cannot walk upward (the impulses' losses are not won back by round-off).
     next.ceiling_j = std::min(lattice_.ceiling_j, next.energy_j + step.round_off_j);
   }
+  narrow_keep_margin(next);
   return next;
+}
+
+void NonsmoothIsland::narrow_keep_margin(Lattice& l) const {
+  if (!(options_.keep_s_per_mps > 0.0)) return;
+  double kinetic_j = 0.0;
+  for (std::size_t i = 0; i < members_.size(); ++i) {
+    if (l.active[i]) {
+      kinetic_j += std::max(0.0, member_energy(i, l.states[i]) - members_[i].lowest_potential_j);
+    }
+  }
+  double speed_mps = 0.0;
+  for (std::size_t i = 0; i < members_.size(); ++i) {
+    if (l.active[i]) {
+      speed_mps = std::max(speed_mps, point_speed_from_energy(members_[i].setup.model,
+                                                              members_[i].board.lens(), kinetic_j));
+    }
+  }
+  // An infinite bound (a member without a lowest potential) keeps the margin.
+  const double keep_m = options_.keep_s_per_mps * speed_mps + options_.keep_join_m;
+  if (keep_m < l.keep_margin_m) l.keep_margin_m = keep_m;
 }
 
 IslandOutcome NonsmoothIsland::outcome(double t) const {

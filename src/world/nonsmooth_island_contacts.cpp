@@ -473,7 +473,7 @@ bool NonsmoothIsland::gather(const std::vector<RigidBodyState>& s, std::vector<M
     if (!lattice_.active[a]) continue;
     for (std::size_t b = a + 1; b < n; ++b) {
       const double keep_m =
-          std::max(options_.keep_margin_m, kKeepMarginFactor * options_.contact_margin_m);
+          std::max(lattice_.keep_margin_m, kKeepMarginFactor * options_.contact_margin_m);
       if (!lattice_.active[b] ||
           apart_by_bounds(members_[a].board, s[a], members_[b].board, s[b], keep_m)) {
         continue;

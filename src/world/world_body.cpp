@@ -1,10 +1,20 @@
 #include "virtual_go/world/world_body.h"
 
+#include <cmath>
+
 #include "virtual_go/common/validation.h"
 #include "virtual_go/flight/exact_motion.h"
 #include "virtual_go/flight/integrator_registry.h"
 
 namespace virtual_go {
+
+double point_speed_from_energy(const MotionModel& model, const LensGeometry& lens,
+                               double kinetic_j) {
+  const MassProperties& mass = model.mass_properties();
+  const double smallest_moment = mass.principal_moments_body().minCoeff();
+  const double a = lens.half_width();
+  return std::sqrt(2.0 * kinetic_j * (1.0 / mass.mass() + a * a / smallest_moment));
+}
 
 WorldBody world_body(const StoneBody& body, MotionModelKind kind) {
   return WorldBody{MotionModel(kind, body.stone.mass_properties), body.stone.shape, body.color};

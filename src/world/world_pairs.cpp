@@ -44,8 +44,14 @@ constexpr double kPairGapToleranceM = 1e-12;
 // cradle and test_world_crowd); the overlap checks of those tests watch it.
 constexpr double kJumpSubSteps = 2.0;
 // An island keeps its members this many times the distance within which the pair search joins
-// a stone to it (the speed bound over a pass may be larger than at the island's formation).
-constexpr double kKeepJoinFactor = 2.0;
+// a stone to it, from its energy at each lattice point (NonsmoothContactOptions::keep_s_per_mps;
+// the join distance of a later pass comes from an energy no higher, with the same floors). 2 from
+// the energy at formation only held a stone rocking 0.8 mm from its neighbour in the real-board
+// cradle's island at h = 3e-4 s (keep 1.7 mm, from the striker's energy) and let it go at
+// 1.5e-4 s (0.83 mm): the island, without rolling resistance, stopped its rocking at 0.22 s, the
+// plane model at 0.92 s. With the margin narrowed at every lattice point, 1.25: 0.917 s at 3e-4,
+// 1.5e-4 and 7.5e-5 s.
+constexpr double kKeepJoinFactor = 1.25;
 
 // A pair of closed-form motions touching without approaching is probed this many times over
 // the rest of the pass (at halving intervals from its end) for moving into each other.
@@ -101,14 +107,8 @@ const World::IslandRun* World::island_of(std::size_t i) const {
 
 namespace {
 
-// Every surface point lies within the rim radius a of the centre: |u| <= |v| + a |omega|, and
-// with m v^2 + I_min omega^2 <= 2 K, Cauchy-Schwarz gives the largest such sum:
-// |v| + a |omega| <= sqrt(2 K (1/m + a^2/I_min)) (the two maxima added: 1.32x that).
 double point_speed_from_energy(const WorldBodyModel& body, double kinetic_j) {
-  const MassProperties& mass = body.setup().model.mass_properties();
-  const double smallest_moment = mass.principal_moments_body().minCoeff();
-  const double a = body.lens().half_width();
-  return std::sqrt(2.0 * kinetic_j * (1.0 / mass.mass() + a * a / smallest_moment));
+  return virtual_go::point_speed_from_energy(body.setup().model, body.lens(), kinetic_j);
 }
 
 }  // namespace
@@ -129,6 +129,10 @@ double World::kinetic_energy_bound(std::size_t k, double dt_s) const {
 }
 
 double World::kinetic_energy_bound_now(std::size_t k, double dt_s) const {
+  return std::max(0.0, energy(k) - lowest_potential(k, dt_s));
+}
+
+double World::lowest_potential(std::size_t k, double dt_s) const {
   // Kinetic energy <= energy - the lowest potential: a lens lies at least its half thickness c
   // (its smallest reach) above whatever supports it, the table, or the top face while it cannot
   // leave the face within dt_s even at the table floor's speed bound (gravity taken vertical, as
@@ -137,15 +141,17 @@ double World::kinetic_energy_bound_now(std::size_t k, double dt_s) const {
   const LensGeometry& lens = body_at(k).lens();
   const double m = setup.model.mass_properties().mass();
   const double thickness_half = lens.sphere_radius() - lens.sphere_offset();
-  const auto above = [&](double floor_z) {
-    return std::max(0.0, energy(k) + m * setup.gravity_world.z() * (floor_z + thickness_half));
+  const auto at = [&](double floor_z) {
+    return -m * setup.gravity_world.z() * (floor_z + thickness_half);
   };
-  const double on_table = above(config_.board.table_z_m());
+  const double on_table = at(config_.board.table_z_m());
   const Eigen::Vector3d& x = stones_.hot(k).state.position_world;
   const double inside_m = std::min(0.5 * config_.board.size_x_m - std::abs(x.x()),
                                    0.5 * config_.board.size_y_m - std::abs(x.y()));
-  const double reach_m = lens.half_width() + point_speed_from_energy(body_at(k), on_table) * dt_s;
-  return x.z() >= config_.board.top_z_m() && inside_m > reach_m ? above(config_.board.top_z_m())
+  const double reach_m =
+      lens.half_width() +
+      point_speed_from_energy(body_at(k), std::max(0.0, energy(k) - on_table)) * dt_s;
+  return x.z() >= config_.board.top_z_m() && inside_m > reach_m ? at(config_.board.top_z_m())
                                                                 : on_table;
 }
 
@@ -622,7 +628,7 @@ void World::form_island(const std::vector<std::size_t>& seeds,
     }
   }
   // The island keeps its members within kKeepJoinFactor times the distance the pair search
-  // joins at (2 jumps and the margin), from the members' energy now (it never rises).
+  // joins at (2 jumps and the margin), from the members' energy now (it never rises) ...
   NonsmoothContactOptions options = config_.options.nonsmooth;
   const double span_s = kJumpSubSteps * options.step_s;  // as jump_bound
   double kinetic_j = 0.0;
@@ -632,11 +638,15 @@ void World::form_island(const std::vector<std::size_t>& seeds,
     speed = std::max(speed, point_speed_from_energy(body_at(i), kinetic_j));
   options.keep_margin_m =
       std::max(options.keep_margin_m, kKeepJoinFactor * (2.0 * speed * span_s + kJoinGapM));
+  // ... and narrows it as their energy falls, by the same rule (each member's floor as now).
+  options.keep_s_per_mps = kKeepJoinFactor * 2.0 * span_s;
+  options.keep_join_m = kKeepJoinFactor * kJoinGapM;
   std::vector<IslandBody> bodies;
   std::vector<StoneId> ids;
   for (std::size_t k = 0; k < members.size(); ++k) {
     bodies.push_back(IslandBody{body_at(members[k]).board(), body_at(members[k]).setup(),
-                                initial[k], config_.board_enabled});
+                                initial[k], config_.board_enabled,
+                                lowest_potential(members[k], span_s)});
     ids.push_back(stones_.id(members[k]));
   }
   auto run = std::make_unique<IslandRun>(

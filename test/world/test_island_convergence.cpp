@@ -22,9 +22,10 @@
 // the lattice (T = K h exactly: a sample between lattice points is an energy-scaled partial
 // step), for h = the default (the largest the core accepts) and four halvings; the observed
 // order of each halving is log2(E(2h) / E(h)).
-// Measured (centre error at the default h = 2e-4 s; orders down to 1.25e-5 s): slide 12.8 um,
-// 1.000 throughout; abreast 12.8 um, 1.000; push 15.5 um, 1.000; stack 39.9 um, 0.82-0.87
-// (rising; 6.4, 6.4, 7.7 and 22.5 um at 1e-4 s), horizontal momentum 0 to 1e-18 kg m/s. A sliding
+// Measured (centre error at the default h = 2.5e-4 s; orders down to 1.56e-5 s): slide 16.0 um,
+// 1.000 throughout; abreast 16.0 um, 1.000; push 19.3 um, 1.00; stack 47.8 um, 0.82-0.87
+// (rising; 6.4, 6.4, 7.7 and 22.5 um at 1e-4 s; at 3e-4 s the stack's first order is 0.7998, so
+// the default stops at 2.5e-4), horizontal momentum 0 to 1e-18 kg m/s. A sliding
 // lens rocks (friction c below its centre tips it towards mu c / d = 7.3 degrees, at 48 rad/s), and
 // the scheme's lag in that rocking dominates: the frozen slide's symplectic-Euler term mu g T h / 2
 // is only 0.59 um of the 6.4 at 1e-4 s. Checked that the tests can fail: a reference with mu 1 %

@@ -306,6 +306,9 @@ class World {
   // The kinetic energy bound of that rule for stone i alone (J); memoised within a pair search.
   double kinetic_energy_bound(std::size_t i, double dt_s) const;
   double kinetic_energy_bound_now(std::size_t i, double dt_s) const;
+  // The potential energy (J) stone i cannot go below within dt_s (its floor: the top face or the
+  // table, kinetic_energy_bound_now).
+  double lowest_potential(std::size_t i, double dt_s) const;
   // That bound for stone i, or the sum over its island's members when it is in one (J).
   double shared_kinetic_energy_bound(std::size_t i, double dt_s) const;
   // Bounds (world, m) that awake stone i cannot leave over the next dt_s while its energy (its

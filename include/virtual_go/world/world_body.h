@@ -52,4 +52,11 @@ class WorldBodyModel {
   std::shared_ptr<const Integrator> exact_;  // stateless: copies of the model may share it
 };
 
+// The fastest any surface point of a lens with kinetic energy kinetic_j (J) can move (m/s): every
+// surface point lies within the rim radius a of the centre, so |u| <= |v| + a |omega|, and with
+// m v^2 + I_min omega^2 <= 2 K, Cauchy-Schwarz gives the largest such sum:
+// |v| + a |omega| <= sqrt(2 K (1/m + a^2/I_min)) (the two maxima added: 1.32x that).
+double point_speed_from_energy(const MotionModel& model, const LensGeometry& lens,
+                               double kinetic_j);
+
 }  // namespace virtual_go
