@@ -70,7 +70,12 @@
 // (test_world_pair_impacts, 0.1 s): P and L to 5.8e-16 and 1.0e-15 relative (1.1e-14 and
 // 9.4e-15 re-integrated step by step). What is NOT exact: first order in h, an impact of a
 // member on the board inside the island is plastic, no
-// rolling resistance or spinning friction, rest by a speed threshold held over a time. What is
+// rolling resistance or spinning friction, rest by a speed threshold held over a time, and a
+// known defect: a member still at a lattice point gains no motion from gravity's torque alone (a
+// stone tilted on its cap and released is held there and rests tilted; a rocking stone freezes at
+// its first turning point). Steps 1-3 move it with the old velocities, so the kinetic energy its
+// impulses give it is paid for by a drop of the potential energy only in the next sub-step, and
+// step 4 takes it away (docs/physics.md, "A still member stays still"). What is
 // kept: no handed-out state overlaps (board and table gap >= -1e-12 m, pair gap >= -1e-12 m), no
 // energy is created, every impulse stays in Coulomb's cone.
 //
