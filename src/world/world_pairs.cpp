@@ -48,9 +48,9 @@ constexpr double kJumpSubSteps = 2.0;
 // the join distance of a later pass comes from an energy no higher, with the same floors). 2 from
 // the energy at formation only held a stone rocking 0.8 mm from its neighbour in the real-board
 // cradle's island at h = 3e-4 s (keep 1.7 mm, from the striker's energy) and let it go at
-// 1.5e-4 s (0.83 mm): the island, without rolling resistance, stopped its rocking at 0.22 s, the
-// plane model at 0.92 s. With the margin narrowed at every lattice point, 1.25: 0.917 s at 3e-4,
-// 1.5e-4 and 7.5e-5 s.
+// 1.5e-4 s (0.83 mm): the island stopped its rocking at 0.22 s (it damps rocking: docs/physics.md,
+// "A still member stays still"), the plane model at 0.92 s. With the margin narrowed at every
+// lattice point, 1.25: 0.917 s at 3e-4, 1.5e-4 and 7.5e-5 s.
 constexpr double kKeepJoinFactor = 1.25;
 
 // A pair of closed-form motions touching without approaching is probed this many times over

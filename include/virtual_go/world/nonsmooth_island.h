@@ -127,7 +127,7 @@ namespace virtual_go {
 
 // The largest sub-step h (s) at which the island's promises are verified, and the default (the
 // tests run h, h / 2 and h / 4, and the convergence orders down to h / 16). Coarser steps were
-// measured to break them (2026-11-29/30, the island and world tests at 3e-4, 5e-4, 1e-3 and
+// measured to break them (2026-11-29, the island and world tests at 3e-4, 5e-4, 1e-3 and
 // 2e-3 s; the samples' momentum between lattice points is kept at every one of them): at 3e-4 s
 // the stack of test_island_convergence (a stone sliding off another) converges at order 0.7998
 // from h to h / 2, below the asserted 0.8 (the real-board cradle, which rested another way at
