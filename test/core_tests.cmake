@@ -44,6 +44,7 @@ foreach(core_test
     contact/test_plane_contact_dynamics
     contact/test_plane_contact
     world/test_world_event
+    world/test_world_body
     world/test_support_plane
     world/test_flight_track
     world/test_nonsmooth_contact
