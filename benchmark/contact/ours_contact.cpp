@@ -135,9 +135,10 @@ class OursContact : public ContactMethod {
         {"time of impact: touch / polish tolerance (m)",
          num(o.time_of_impact.touch_tolerance_m) + " / " + num(o.time_of_impact.polish_gap_m),
          phys + "\"Time of impact\""},
-        {"plane contact: rel. / abs. tolerance, max step (s)",
+        {"plane contact: rel. / abs. tolerance, max step (s), event resolution (s)",
          num(o.plane_contact.relative_tolerance) + " / " + num(o.plane_contact.absolute_tolerance) +
-             ", " + num(o.plane_contact.max_step_s),
+             ", " + num(o.plane_contact.max_step_s) + ", " +
+             num(o.plane_contact.event_resolution_s),
          phys + "\"Sustained contact\" (Dormand-Prince 8(5,3), dop853.h)"},
         {"fallback: sub-step (s), rest speed (m/s) for (s)",
          num(o.nonsmooth.step_s) + ", " + num(o.nonsmooth.rest_speed_mps) + " for " +

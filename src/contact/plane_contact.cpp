@@ -60,6 +60,7 @@ PlaneContact::Impl::Impl(const PlaneContactSetup& setup, const PlaneRegion& regi
   require_positive("contact options.relative_tolerance", options.relative_tolerance);
   require_positive("contact options.absolute_tolerance", options.absolute_tolerance);
   require_positive("contact options.max_step_s", options.max_step_s);
+  require_positive("contact options.event_resolution_s", options.event_resolution_s);
   require_positive("contact options.initial_step_s", options.initial_step_s);
   require_positive("contact options.gap_tolerance_m", options.gap_tolerance_m);
   require_positive("contact options.normal_velocity_tolerance_mps",

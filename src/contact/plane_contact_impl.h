@@ -96,6 +96,8 @@ class PlaneContact::Impl {
   // the state is not that one (nothing changed then).
   bool flat_closed_form();
   void step_in(Segment& segment);
+  // Looks for events a span needs (s): one per event resolution or part of one, at least one.
+  int looks_within(double span_s) const;
   State state_in(const Segment& segment, double t) const;
   Sample sample(double t) const;
   void start_mode(const ModeChoice& choice, double t, double energy_cap);
@@ -130,6 +132,7 @@ class PlaneContact::Impl {
     double value_m = 0.0;
   } clearance_anchor_;
   bool clearance_start_bounded_ = false;
+  std::vector<plane_contact_detail::EventValues> looks_;  // within a step, the last is its end's
   mutable SegmentRing segments_;  // dense output is computed when first sampled
   std::optional<PendingEvent> pending_;
   double reached_ = 0.0;       // time of the last outcome

@@ -234,28 +234,51 @@ void PlaneContact::Impl::step_in(Segment& segment) {
   const bool bounded = clearance_bound > 0.0;
   EventValues g_end = laws_.event_values(k_end, mode_, &forces_end, bounded);
   if (bounded) g_end.g[clearance] = clearance_bound;
+  // A step longer than the event resolution is also looked at within, on its dense output, at
+  // looks no further apart (one force solve each; the clearance only where its bound from the
+  // last value found no longer keeps it positive, as at the step end).
+  const int pieces = looks_within(h);
+  looks_.resize(static_cast<std::size_t>(pieces));
+  for (int p = 1; p < pieces; ++p) {
+    const PlaneContactKinematics k_p =
+        laws_.decode(mode_, state_in(segment, segment.t_begin + h * p / pieces), false);
+    const double floor_p = g_start_.active[clearance] ? clearance_floor(k_p) : 0.0;
+    EventValues& look = looks_[static_cast<std::size_t>(p - 1)];
+    look = laws_.event_values(k_p, mode_, nullptr, floor_p > 0.0);
+    if (floor_p > 0.0) look.g[clearance] = floor_p;
+  }
+  looks_[static_cast<std::size_t>(pieces - 1)] = g_end;
   std::optional<PendingEvent> earliest;
   for (int i = 0; i < kTriggerCount; ++i) {
     if (!g_end.active[i] || !g_start_.active[i]) continue;
     const double g0 = g_start_.g[i], g1 = g_end.g[i];
     double time;
-    if (g0 > 0.0 && g1 <= 0.0) {
+    if (g0 > 0.0) {
+      // The first look at which it is no longer positive, if any.
+      int p = 1;
+      while (p <= pieces && looks_[static_cast<std::size_t>(p - 1)].g[i] > 0.0) ++p;
+      if (p > pieces) continue;
       const Trigger trigger = static_cast<Trigger>(i);
       auto g = [&](double t) {
         const State y = state_in(segment, t);
         return laws_.event_value(trigger, laws_.decode(segment.mode, y, false), segment.mode);
       };
+      const double t_lo = p == 1 ? segment.t_begin : segment.t_begin + h * (p - 1) / pieces;
+      const double t_hi = p == pieces ? segment.t_end : segment.t_begin + h * p / pieces;
       // The bracket's start from the clearance itself, not its bound (both positive).
-      const double g_begin = i == clearance && clearance_start_bounded_ ? g(segment.t_begin) : g0;
-      if (!(segment.t_end > segment.t_begin)) {
-        time = segment.t_begin;  // a step below the time's resolution: no bracket to search
+      const double g_lo = i == clearance ? g(t_lo)
+                          : p == 1       ? g0
+                                         : looks_[static_cast<std::size_t>(p - 2)].g[i];
+      const double g_hi = looks_[static_cast<std::size_t>(p - 1)].g[i];
+      if (!(t_hi > t_lo)) {
+        time = t_lo;  // a step below the time's resolution: no bracket to search
       } else {
         boost::uintmax_t iterations = 100;
-        const auto bracket = boost::math::tools::toms748_solve(
-            g, segment.t_begin, segment.t_end, g_begin, g1, TimeTolerance(), iterations);
+        const auto bracket = boost::math::tools::toms748_solve(g, t_lo, t_hi, g_lo, g_hi,
+                                                               TimeTolerance(), iterations);
         time = bracket.second;  // the first time found on the far side
       }
-    } else if (g0 <= 0.0 && g1 < 0.0) {
+    } else if (g1 < 0.0) {
       time = segment.t_begin;
     } else {
       continue;
@@ -299,6 +322,11 @@ void PlaneContact::Impl::step_in(Segment& segment) {
   } else {
     anchor_clearance(k_end, g_end);
   }
+}
+
+int PlaneContact::Impl::looks_within(double span_s) const {
+  const double resolution = laws_.options().event_resolution_s;
+  return span_s > resolution ? static_cast<int>(std::min(1e6, std::ceil(span_s / resolution))) : 1;
 }
 
 bool PlaneContact::Impl::flat_closed_form() {
@@ -402,11 +430,10 @@ bool PlaneContact::Impl::flat_closed_form() {
       auto value = [&](double t) {
         return laws_.event_value(trigger, laws_.decode(mode_, state_in(segment, t), false), mode_);
       };
-      // Sign changes are looked for on pieces no longer than the integrator's longest step
-      // (events are found at that resolution in integrated phases too), then bracketed.
+      // Sign changes are looked for on pieces no longer than the event resolution (as in
+      // integrated phases), then bracketed.
       const double span = first.time - t_;
-      const int pieces =
-          static_cast<int>(std::min(1e6, std::ceil(span / laws_.options().max_step_s)));
+      const int pieces = looks_within(span);
       double lo = t_, g_lo = g_start_.g[i], hi = lo, g_hi = g_lo;
       if (trigger == Trigger::clearance && clearance_start_bounded_) g_lo = value(t_);
       bool crossed = false;

@@ -942,6 +942,41 @@ TEST(PlaneContact, LeavingTheBoardTopAndEnteringTheBoardsFootprintOnTheTable) {
   }
 }
 
+TEST(PlaneContact, AnObstacleWithinOneLongStepIsFoundByTheLooksOnItsDenseOutput) {
+  // Rotation frozen, flat, sliding along x past a post of radius r whose axis is dy beside the
+  // path: the clearance |G - post| - r (horizontal) is negative only while
+  // |x - post_x| < sqrt(r^2 - dy^2), about 15 ms here, inside one integrator step of the smooth
+  // slide. Hit at x(t) = post_x - sqrt(r^2 - dy^2), x(t) = x0 + v0 t - mu g t^2 / 2.
+  const double mu = 0.3, v0 = 0.5, r = 3e-3, dy = 1e-3;
+  const auto model = frozen_rotation_model();
+  const Vector2d x0(0.01, 0.02), post(x0.x() + 0.02, x0.y() + dy);
+  const double distance = post.x() - std::sqrt(r * r - dy * dy) - x0.x();
+  const double t_hit = (v0 - std::sqrt(v0 * v0 - 2 * mu * kG * distance)) / (mu * kG);
+  for (const double resolution : {vg::PlaneContactOptions().event_resolution_s, 1.0}) {
+    vg::PlaneContactOptions options;
+    options.event_resolution_s = resolution;
+    options.clearance_m = [post, r](const vg::LensPose& pose) {
+      return (pose.center_world.head<2>() - post).norm() - r;
+    };
+    vg::PlaneContact phase(
+        model, kLens, kGravity, 0.0, vg::PlaneRegion::whole_plane(), material(mu, 0, 0),
+        on_plane(model, Quaterniond::Identity(), x0, Vector2d(v0, 0), Vector3d::Zero()), 0.0,
+        options);
+    const Trace r_trace = trace(phase, model, 1.0, 0.1);
+    if (resolution < 1.0) {
+      ASSERT_EQ(r_trace.last.event, vg::PlaneContactEvent::obstacle);
+      EXPECT_NEAR(r_trace.last.time_s, t_hit, 1e-12);
+      // Fewer steps than looks: the hit lay inside a step (which a step end alone misses, below).
+      EXPECT_LT(phase.counters().steps, static_cast<long>(t_hit / resolution));
+    } else {
+      // Looked at only at the step ends, the slide passes the post and rests beyond it.
+      EXPECT_EQ(r_trace.last.event, vg::PlaneContactEvent::rest);
+      EXPECT_GT(r_trace.last.state.position_world.x(), post.x() + r);
+    }
+    expect_energy_never_rises(r_trace);
+  }
+}
+
 TEST(PlaneContact, UpsideDownOnTheTableRocksLikeTheRightWayUp) {
   // The top cap on the table plane: the same rolling period at 5 deg as on the bottom cap.
   const auto model = stone_model();

@@ -71,9 +71,12 @@ struct PlaneContactOutcome {
 struct PlaneContactOptions {
   double relative_tolerance = 1e-12;  // of the integrator, per step (maximum norm)
   double absolute_tolerance = 1e-14;  // of the integrator (m, m/s, rad/s, quaternion units)
-  double max_step_s = 5e-3;           // longest integrator step, s
-  double initial_step_s = 1e-4;       // first trial step after a mode change, s
-  double gap_tolerance_m = 1e-9;      // accepted |gap| of the initial state, m
+  double max_step_s = 0.1;            // longest integrator step, s
+  // Events are looked for at least this often (s): at step ends, and within a longer step on its
+  // dense output. A sign change between two looks is found; two within one are not.
+  double event_resolution_s = 5e-3;
+  double initial_step_s = 1e-4;                 // first trial step after a mode change, s
+  double gap_tolerance_m = 1e-9;                // accepted |gap| of the initial state, m
   double normal_velocity_tolerance_mps = 1e-6;  // accepted |u_n| of the initial state, m/s
   // Optional: the signed distance (m) from the stone at a pose to the obstacles other than the
   // plane (the board's sides for a stone on the table), positive while none touches it. The
