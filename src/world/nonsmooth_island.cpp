@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "nonsmooth_island_impl.h"
@@ -97,7 +98,10 @@ NonsmoothIsland::NonsmoothIsland(std::vector<IslandBody> bodies,
   }
   lattice_.active.assign(members_.size(), 1);
   lattice_.calm_steps.assign(members_.size(), 0);
-  lattice_.keep_margin_m = options_.keep_margin_m;
+  // With the energy rule, the margin starts from the formation's energy and only narrows.
+  lattice_.keep_margin_m = options_.keep_s_per_mps > 0.0 ? std::numeric_limits<double>::infinity()
+                                                         : options_.keep_margin_m;
+  narrow_keep_margin(lattice_);
   // Contacts between members that approach at formation are impacts at that instant (all gaps
   // within the margin close together: the vanishing gaps of Newton's cradle), before any flight.
   std::vector<MemberContacts> contacts(members_.size());
@@ -247,8 +251,10 @@ void NonsmoothIsland::narrow_keep_margin(Lattice& l) const {
                                                               members_[i].board.lens(), kinetic_j));
     }
   }
-  // An infinite bound (a member without a lowest potential) keeps the margin.
-  const double keep_m = options_.keep_s_per_mps * speed_mps + options_.keep_join_m;
+  // An infinite bound (a member without a lowest potential) keeps the margin; the configured
+  // margin is its floor.
+  const double keep_m =
+      std::max(options_.keep_margin_m, options_.keep_s_per_mps * speed_mps + options_.keep_join_m);
   if (keep_m < l.keep_margin_m) l.keep_margin_m = keep_m;
 }
 

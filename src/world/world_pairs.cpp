@@ -628,17 +628,10 @@ void World::form_island(const std::vector<std::size_t>& seeds,
     }
   }
   // The island keeps its members within kKeepJoinFactor times the distance the pair search
-  // joins at (2 jumps and the margin), from the members' energy now (it never rises) ...
+  // joins at (2 jumps and the margin), from the members' energy above each one's floor at
+  // formation, narrowed as that energy falls (NonsmoothContactOptions::keep_s_per_mps).
   NonsmoothContactOptions options = config_.options.nonsmooth;
   const double span_s = kJumpSubSteps * options.step_s;  // as jump_bound
-  double kinetic_j = 0.0;
-  for (const std::size_t i : members) kinetic_j += kinetic_energy_bound(i, span_s);
-  double speed = 0.0;
-  for (const std::size_t i : members)
-    speed = std::max(speed, point_speed_from_energy(body_at(i), kinetic_j));
-  options.keep_margin_m =
-      std::max(options.keep_margin_m, kKeepJoinFactor * (2.0 * speed * span_s + kJoinGapM));
-  // ... and narrows it as their energy falls, by the same rule (each member's floor as now).
   options.keep_s_per_mps = kKeepJoinFactor * 2.0 * span_s;
   options.keep_join_m = kKeepJoinFactor * kJoinGapM;
   std::vector<IslandBody> bodies;

@@ -142,17 +142,18 @@ struct NonsmoothContactOptions {
   // Contacts with a gap up to this (m) count as touching: an approach there is stopped.
   double contact_margin_m = 1e-9;
   // A member with another member within this (m) does not leave the island (at least 10
-  // contact margins). The World widens it to the distance within which it joins a stone to the
-  // island (world_pairs.cpp), so that a member let go is not joined again at once.
+  // contact margins). With keep_s_per_mps > 0 it is the floor of the margin below.
   double keep_margin_m = 1e-8;
-  // With keep_s_per_mps > 0, at every lattice point the keep margin narrows (it never widens) to
-  // keep_s_per_mps times the fastest surface-point speed the active members' kinetic energy
-  // bound allows (the sum of each one's energy above IslandBody::lowest_potential_j,
-  // point_speed_from_energy) plus keep_join_m: the World's join distance follows the island's
-  // energy, which never rises, so the distance that keeps a member let go from rejoining at once
-  // shrinks with it. Without it, a margin set from the energy at formation (the striker's) held
-  // a stone rocking 0.8 mm from its neighbour in the island for good at h = 3e-4 s (1.7 mm)
-  // and let it go at 1.5e-4 s (0.83 mm): another outcome at each h.
+  // With keep_s_per_mps > 0, the keep margin is set at formation and at every lattice point
+  // narrowed (it never widens) to keep_s_per_mps times the fastest surface-point speed the active
+  // members' kinetic energy bound allows (the sum of each one's energy above
+  // IslandBody::lowest_potential_j, point_speed_from_energy) plus keep_join_m, at least
+  // keep_margin_m. The World sets it to the distance within which it joins a stone to the island
+  // (world_pairs.cpp), so that a member let go is not joined again at once, and its join distance
+  // follows the island's energy, which never rises, so the distance that keeps a member let go from
+  // rejoining at once shrinks with it. Without it, a margin set from the energy at formation (the
+  // striker's) held a stone rocking 0.8 mm from its neighbour in the island for good at h = 3e-4 s
+  // (1.7 mm) and let it go at 1.5e-4 s (0.83 mm): another outcome at each h.
   double keep_s_per_mps = 0.0;
   double keep_join_m = 0.0;
   // The exact flight must be contact-free this long (s) for a member to end in flight.
