@@ -212,6 +212,50 @@ TEST(IslandContact, TwoStonesSideBySideStayStillAndRest) {
   EXPECT_LE(w.worst_rise, kEnergyRoundOffJ);
 }
 
+TEST(IslandContact, TheKeepMarginNarrowsWithTheEnergyButNotBelowTheConfiguredOne) {
+  // Two flat stones side by side; the right one is pushed away at 1 cm/s, slides (and rocks) a
+  // few tens of micrometres and stops. With the energy rule (as the World sets it) the keep
+  // margin falls with the energy towards keep_join_m, below that gap: the stones part, each
+  // handed on alone. A configured keep margin of 1 mm is the rule's floor: they stay one island
+  // and rest together.
+  const double h_s = vg::NonsmoothContactOptions{}.step_s;
+  const double m = model().mass_properties().mass(), g = -kGravity.z();
+  for (const double floor_m : {vg::NonsmoothContactOptions{}.keep_margin_m, 1e-3}) {
+    vg::NonsmoothContactOptions options;
+    options.keep_s_per_mps = 4.0 * h_s;
+    options.keep_join_m = 1e-9;
+    options.keep_margin_m = floor_m;
+    std::vector<vg::IslandBody> bodies;
+    for (const vg::RigidBodyState& s : {flat(-kA, 0.0), flat(kA, 0.0, Vector3d(0.01, 0, 0))}) {
+      bodies.push_back(body(s));
+      bodies.back().lowest_potential_j = m * g * kC;  // lying flat on the board
+    }
+    const vg::WorldConfig c = config(0.5, 0.3);
+    vg::NonsmoothIsland island(bodies, c.board_material, c.table_material, c.board_material, 0.0,
+                               options);
+    Watch w;
+    std::vector<vg::IslandMemberEnd> ends;
+    const vg::IslandOutcome o = run(island, w, 1e-3, 0.5, &ends);
+    ASSERT_EQ(ends.size(), 2u) << floor_m;
+    const double gap_m = proven_pair_gap(o.states[0], o.states[1]);
+    EXPECT_GT(gap_m, 5e-6) << floor_m;
+    for (const vg::IslandMemberEnd& e : ends) {
+      if (floor_m < 1e-3) {
+        EXPECT_NE(e.end, vg::NonsmoothEnd::rest) << e.member;  // parted
+      } else {
+        EXPECT_EQ(e.end, vg::NonsmoothEnd::rest) << e.member;  // held by the floor
+      }
+    }
+    std::printf(
+        "[ keep    ] floor %.0e m: gap %.3e m, ends %d %d at %.3f s, slider tilted %.1e rad\n",
+        floor_m, gap_m, static_cast<int>(ends[0].end), static_cast<int>(ends[1].end), o.time_s,
+        std::acos((o.states[1].orientation * Vector3d::UnitZ()).z()));
+    EXPECT_GE(w.worst_pair_gap, -kOverlapToleranceM);
+    EXPECT_GE(w.worst_board_gap, -kOverlapToleranceM);
+    EXPECT_LE(w.worst_rise, kEnergyRoundOffJ);
+  }
+}
+
 TEST(IslandContact, ARowStruckAtOneEndMovesOnAsOneBody) {
   // Five flat stones touching along x, the first given v0 along the row. Plastic contacts
   // (e* = 0) make the row one body at once: momentum m v0 shared by 5 m, V = v0 / 5 (less the
