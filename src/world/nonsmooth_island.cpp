@@ -18,6 +18,13 @@ namespace {
 
 // The plane model accepts |u_n| <= 1e-6 m/s; hand over only well inside that.
 constexpr double kPlaneNormalSpeedMps = 1e-7;
+// A member no nearer than this (m) to any other member or obstacle leans on none of them: the
+// contacts' gaps stay within nanometres (the contact margin, the corrections' slack).
+constexpr double kLeanGapM = 1e-6;
+// A contact normal within this (1 - cosine) of -gravity is a face across gravity; G over the
+// contact point within l_r plus this (m) balances (round-off of the witness point).
+constexpr double kAcrossGravityTolerance = 1e-12;
+constexpr double kBalanceToleranceM = 1e-12;
 
 ContactMaterial plastic(ContactMaterial m) {
   m.restitution = 0.0;
@@ -149,12 +156,17 @@ NonsmoothIsland::Lattice NonsmoothIsland::next_lattice() {
     leaving[i] = 1;
     return &next.left.back();
   };
-  // The plane model first: a member alone on the top face or the table.
+  // The plane model first: a member alone on the top face or the table; or one about to rest
+  // there that no stone touches but that could not rest as it is (held, not balanced).
   for (std::size_t i = 0; i < n; ++i) {
     const MemberContacts& m = step.contacts[i];
-    if (!next.active[i] || m.near > 0 || !m.loaded || m.board != 1) continue;
+    if (!next.active[i] || !m.loaded || m.board != 1) continue;
     const BoardContact& c = m.contact[0];
     const RigidBodyState& s = next.states[i];
+    if (m.near > 0 && (m.stones > 0 || m.obstacles > 0 || !calm_for_long(i) ||
+                       balanced_on_its_contact(i, s, c) || !clear_of_others(i, next))) {
+      continue;
+    }
     const double u_n = c.lens.normal_world.dot(
         point_velocity_world(members_[i].setup.model, s, c.lens.point_world));
     const std::optional<SupportPlane> plane =
@@ -234,6 +246,37 @@ NonsmoothIsland::Lattice NonsmoothIsland::next_lattice() {
   }
   narrow_keep_margin(next);
   return next;
+}
+
+bool NonsmoothIsland::balanced_on_its_contact(std::size_t i, const RigidBodyState& s,
+                                              const BoardContact& c) const {
+  // On a face across gravity, the weight through G and N = m g at the contact point P balance
+  // when the rolling couple can hold the weight's moment about P: |(G - P) across n| <= l_r (as
+  // the plane model's rest requires). Elsewhere friction carries part of the weight: not judged.
+  const Eigen::Vector3d& g = members_[i].setup.gravity_world;
+  const Eigen::Vector3d& n = c.lens.normal_world;
+  if (!(-n.dot(g) >= (1.0 - kAcrossGravityTolerance) * g.norm())) return true;
+  const Eigen::Vector3d arm = s.position_world - c.lens.point_world;
+  const double l_r = (c.on_table() ? table_plastic_ : board_plastic_).rolling_resistance_m;
+  return (arm - arm.dot(n) * n).norm() <= l_r + kBalanceToleranceM;
+}
+
+bool NonsmoothIsland::clear_of_others(std::size_t i, const Lattice& l) {
+  const RigidBodyState& s = l.states[i];
+  const LensPose pi = lens_pose(s);
+  for (std::size_t j = 0; j < members_.size(); ++j) {
+    if (j == i || !l.active[j] ||
+        apart_by_bounds(members_[i].board, s, members_[j].board, l.states[j], kLeanGapM)) {
+      continue;
+    }
+    const LensPose pj = lens_pose(l.states[j]);
+    if (apart_along_last_normal(i, pi, j, pj, kLeanGapM)) continue;
+    if (pair_distance(i, pi, j, pj, true).gap_m <= kLeanGapM) return false;
+  }
+  for (std::size_t o = 0; o < obstacles_.size(); ++o) {
+    if (obstacle_contact(i, s, o, kLeanGapM, true)) return false;
+  }
+  return true;
 }
 
 void NonsmoothIsland::narrow_keep_margin(Lattice& l) const {

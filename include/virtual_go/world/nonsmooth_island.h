@@ -75,7 +75,11 @@
 // stone tilted on its cap and released is held there and rests tilted; a rocking stone freezes at
 // its first turning point). Steps 1-3 move it with the old velocities, so the kinetic energy its
 // impulses give it is paid for by a drop of the potential energy only in the next sub-step, and
-// step 4 takes it away (docs/physics.md, "A still member stays still"). What is
+// step 4 takes it away (docs/physics.md, "A still member stays still"). Mended where it would
+// last: a member about to rest on one contact with a face across gravity, touching no stone and
+// no nearer than 1 um to one, but whose G is more than l_r beside its contact point (it could
+// not rest there), goes to the plane model (NonsmoothEnd::plane) instead, which rocks it to a
+// balanced rest. A member leaning on another still rests where the island holds it. What is
 // kept: no handed-out state overlaps (board and table gap >= -1e-12 m, pair gap >= -1e-12 m), no
 // energy is created, every impulse stays in Coulomb's cone.
 //
@@ -357,6 +361,12 @@ class NonsmoothIsland {
 
   // Lowers l.keep_margin_m to the one its states' energy bound allows (keep_s_per_mps).
   void narrow_keep_margin(Lattice& l) const;
+  // Whether member i at s, with c its only contact, could rest there: on a face across gravity,
+  // G no further than l_r from above the contact point (else true: not judged here).
+  bool balanced_on_its_contact(std::size_t i, const RigidBodyState& s, const BoardContact& c) const;
+  // Whether member i in l is farther than a micrometre from every other active member and every
+  // obstacle (so it leans on none of them).
+  bool clear_of_others(std::size_t i, const Lattice& l);
   // One sub-step of h_s from `from`, which is at lattice(steps_).
   Step sub_step(const Lattice& from, double h_s, bool commit);
   // Step 3's plastic impulses of member i's board and table contacts that approach, and the
