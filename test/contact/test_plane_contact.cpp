@@ -1030,6 +1030,17 @@ TEST(PlaneContact, BadInputIsRefusedByNameAndChangesNothing) {
   auto nan_state = flat;
   nan_state.velocity_world.x() = NAN;
   EXPECT_NE(message(nan_state, material(0.3, 0, 0), whole).find("velocity"), std::string::npos);
+  for (const double resolution_s : {0.0, -1e-3, static_cast<double>(NAN)}) {
+    vg::PlaneContactOptions options;
+    options.event_resolution_s = resolution_s;
+    try {
+      vg::PlaneContact phase(model, kLens, kGravity, 0.0, whole, material(0.3, 0, 0), flat, 0.0,
+                             options);
+      ADD_FAILURE() << "event_resolution_s " << resolution_s << " accepted";
+    } catch (const vg::InvalidArgument& e) {
+      EXPECT_NE(std::string(e.what()).find("event_resolution_s"), std::string::npos) << e.what();
+    }
+  }
 
   vg::PlaneContact phase(
       model, kLens, kGravity, 0.0, whole, material(0.3, 0, 0),
