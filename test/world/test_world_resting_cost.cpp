@@ -118,7 +118,7 @@ TEST(WorldRestingCost, AFullRestingBoardWithStoneContactCostsOnePassPerCall) {
   vg::World world = board_of(true);
   std::vector<vg::WorldEvent> events;
   const vg::WorldCounters before = world.counters();
-  const long calls = 100000;
+  const long calls = 1000000;  // the 10^6
   for (long k = 1; k <= calls; ++k) world.advance_to(1e-3 + k * 1e-3, events);
   const vg::WorldCounters after = world.counters();
   EXPECT_EQ(after.advance_calls - before.advance_calls, calls);

@@ -180,9 +180,10 @@ TEST(WorldStones, AFullBoardAddedStoneByStoneCostsNothing) {
   for (const StoneId id : world.stone_ids()) frozen.push_back(world.state(id));
   const vg::WorldCounters before = world.counters();
   const std::size_t events_before = events.size();
-  for (long k = 1; k <= 100000; ++k) world.advance_to(k * 1e-3, events);
+  const long calls = 1000000;  // the 10^6
+  for (long k = 1; k <= calls; ++k) world.advance_to(k * 1e-3, events);
   const vg::WorldCounters after = world.counters();
-  EXPECT_EQ(after.advance_calls - before.advance_calls, 100000);
+  EXPECT_EQ(after.advance_calls - before.advance_calls, calls);
   EXPECT_EQ(after.stones_visited, before.stones_visited);
   EXPECT_EQ(after.work(), before.work());
   EXPECT_EQ(after.flight_steps, before.flight_steps);
