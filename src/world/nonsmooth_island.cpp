@@ -105,10 +105,12 @@ NonsmoothIsland::NonsmoothIsland(std::vector<IslandBody> bodies,
   }
   lattice_.active.assign(members_.size(), 1);
   lattice_.calm_steps.assign(members_.size(), 0);
-  // With the energy rule, the margin starts from the formation's energy and only narrows.
+  // With the energy rule, the margin starts from the formation's energy and only narrows; a
+  // member without a lowest potential gives no bound, and then the configured margin holds.
   lattice_.keep_margin_m = options_.keep_s_per_mps > 0.0 ? std::numeric_limits<double>::infinity()
                                                          : options_.keep_margin_m;
   narrow_keep_margin(lattice_);
+  if (!std::isfinite(lattice_.keep_margin_m)) lattice_.keep_margin_m = options_.keep_margin_m;
   // Contacts between members that approach at formation are impacts at that instant (all gaps
   // within the margin close together: the vanishing gaps of Newton's cradle), before any flight.
   std::vector<MemberContacts> contacts(members_.size());

@@ -263,6 +263,32 @@ TEST(IslandContact, TheKeepMarginNarrowsWithTheEnergyButNotBelowTheConfiguredOne
   }
 }
 
+TEST(IslandContact, WithoutALowestPotentialTheConfiguredKeepMarginHolds) {
+  // The energy rule without a floor for the members' potential gives no bound on their speed;
+  // the configured margin then holds (not an unbounded one, which would keep two stones that fly
+  // apart in one island for ever). No board: they separate at 0.2 m/s each.
+  vg::NonsmoothContactOptions options;
+  options.keep_s_per_mps = 4.0 * options.step_s;
+  options.keep_join_m = 1e-9;
+  std::vector<vg::IslandBody> bodies;
+  for (const vg::RigidBodyState& s :
+       {at(Vector3d(-kA, 0, 0.1), Quaterniond::Identity(), Vector3d(-0.2, 0, 0)),
+        at(Vector3d(kA, 0, 0.1), Quaterniond::Identity(), Vector3d(0.2, 0, 0))}) {
+    bodies.push_back(body(s));
+    bodies.back().board_enabled = false;
+  }
+  const vg::WorldConfig c = config(0.5, 0.3);
+  vg::NonsmoothIsland island(bodies, c.board_material, c.table_material, c.board_material, 0.0,
+                             options);
+  Watch w;
+  std::vector<vg::IslandMemberEnd> ends;
+  const vg::IslandOutcome o = run(island, w, 1e-3, 0.1, &ends);
+  ASSERT_TRUE(o.finished);
+  ASSERT_EQ(ends.size(), 2u);
+  for (const vg::IslandMemberEnd& e : ends) EXPECT_EQ(e.end, vg::NonsmoothEnd::separated);
+  EXPECT_LT(o.time_s, 0.01);
+}
+
 TEST(IslandContact, AStoneHeldTiltedIsHandedToThePlaneModelInsteadOfRestingTilted) {
   // A stone tilted 7 deg on its bottom cap, released from rest 7.5 mm beside a flat one, both
   // kept in one island by a 1 cm keep margin. The island holds the tilted one still (a sub-step

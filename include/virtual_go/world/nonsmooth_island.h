@@ -152,12 +152,13 @@ struct NonsmoothContactOptions {
   // narrowed (it never widens) to keep_s_per_mps times the fastest surface-point speed the active
   // members' kinetic energy bound allows (the sum of each one's energy above
   // IslandBody::lowest_potential_j, point_speed_from_energy) plus keep_join_m, at least
-  // keep_margin_m. The World sets it to the distance within which it joins a stone to the island
-  // (world_pairs.cpp), so that a member let go is not joined again at once, and its join distance
-  // follows the island's energy, which never rises, so the distance that keeps a member let go from
-  // rejoining at once shrinks with it. Without it, a margin set from the energy at formation (the
-  // striker's) held a stone rocking 0.8 mm from its neighbour in the island for good at h = 3e-4 s
-  // (1.7 mm) and let it go at 1.5e-4 s (0.83 mm): another outcome at each h.
+  // keep_margin_m (which holds alone while a member without a lowest potential leaves no bound).
+  // The World sets the rule to the distance within which it joins a stone to the island
+  // (world_pairs.cpp), so that a member let go is not joined again at once; that join distance
+  // follows the island's energy, which never rises, so the margin shrinks with it. Without it, a
+  // margin set from the energy at formation (the striker's) held a stone rocking 0.8 mm from its
+  // neighbour in the island for good at h = 3e-4 s (1.7 mm) and let it go at 1.5e-4 s (0.83 mm):
+  // another outcome at each h.
   double keep_s_per_mps = 0.0;
   double keep_join_m = 0.0;
   // The exact flight must be contact-free this long (s) for a member to end in flight.
