@@ -51,6 +51,14 @@ vg::NonsmoothIsland island_of(const std::vector<vg::RigidBodyState>& states, dou
                              options);
 }
 
+// An island of these bodies, the board's material (e* 0.5, mu 0.3) between the stones too.
+vg::NonsmoothIsland island_of_bodies(const std::vector<vg::IslandBody>& bodies,
+                                     const vg::NonsmoothContactOptions& options) {
+  const vg::WorldConfig c = config(0.5, 0.3);
+  return vg::NonsmoothIsland(bodies, c.board_material, c.table_material, c.board_material, 0.0,
+                             options);
+}
+
 // The gap between the two lenses' supporting planes with normal n (from A to B): a lower bound
 // of their signed distance for every unit n, from the test's own support mapping.
 double plane_gap_along(const vg::RigidBodyState& a, const vg::RigidBodyState& b, Vector3d n) {
@@ -232,9 +240,7 @@ TEST(IslandContact, TheKeepMarginNarrowsWithTheEnergyButNotBelowTheConfiguredOne
       bodies.push_back(body(s));
       bodies.back().lowest_potential_j = m * g * kC;  // lying flat on the board
     }
-    const vg::WorldConfig c = config(0.5, 0.3);
-    vg::NonsmoothIsland island(bodies, c.board_material, c.table_material, c.board_material, 0.0,
-                               options);
+    vg::NonsmoothIsland island = island_of_bodies(bodies, options);
     Watch w;
     std::vector<vg::IslandMemberEnd> ends;
     const vg::IslandOutcome o = run(island, w, 1e-3, 0.5, &ends);
@@ -277,9 +283,7 @@ TEST(IslandContact, WithoutALowestPotentialTheConfiguredKeepMarginHolds) {
     bodies.push_back(body(s));
     bodies.back().board_enabled = false;
   }
-  const vg::WorldConfig c = config(0.5, 0.3);
-  vg::NonsmoothIsland island(bodies, c.board_material, c.table_material, c.board_material, 0.0,
-                             options);
+  vg::NonsmoothIsland island = island_of_bodies(bodies, options);
   Watch w;
   std::vector<vg::IslandMemberEnd> ends;
   const vg::IslandOutcome o = run(island, w, 1e-3, 0.1, &ends);
