@@ -60,6 +60,7 @@ foreach(core_test
     world/test_world_pair_impacts
     world/test_world_cradle
     world/test_world_crowd
+    world/test_static_balance
     world/test_stone_placement
     world/test_world_resting_cost
     world/test_world_reach_bound

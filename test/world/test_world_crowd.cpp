@@ -17,12 +17,17 @@
 
 #include "virtual_go/world/stone_placement.h"
 #include "world/many_stones_support.h"
+#include "world/static_balance.h"
 #include "world/world_test_support.h"
 
 namespace {
 
 using namespace worldtest;
 using Eigen::Vector3d;
+
+// A wrench left unheld (in units of m g, m g a) as large as this would move a stone faster than
+// the rest speed (1e-5 m/s) within the rest time (0.01 s): 1e-5 / (0.01 g) ~ 1e-4.
+constexpr double kHeldResidual = 1e-4;
 
 struct Crowd {
   vg::World world;
@@ -197,6 +202,41 @@ TEST(WorldCrowd, AStoneThrownIntoABlockComesToRest) {
   std::printf(
       "[ measured ] %d stones rest alone, G at most %.3g m beside the lowest point (l_r %g m)\n",
       alone, largest_offset, l_r);
+  // Every stone, alone or leaning: forces and couples inside the contact laws that hold it
+  // (static_balance.h), with the contacts the island counts as touching (within 1 nm) and,
+  // more generously, every pair within 1 um. Measured only: the island holds still members
+  // where gravity's torque should move them (docs/physics.md, "A still member stays still"),
+  // and DISABLED_EveryStoneAtRestIsHeldByItsContacts below asserts it for when that is fixed.
+  for (const double touch_m : {1e-9, 1e-6}) {
+    const BalanceResult b = static_balance(cr.world, kGravity, laws_of(config()), touch_m);
+    int unheld = 0;
+    double largest = 0.0;
+    for (std::size_t i = 0; i < cr.world.stone_count(); ++i) {
+      const double residual = std::max(b.force_residual[i], b.torque_residual[i]);
+      largest = std::max(largest, residual);
+      unheld += residual > kHeldResidual;
+    }
+    std::printf(
+        "[ measured ] contacts within %g m: %zu; %d of %zu stones not held by them, "
+        "largest unheld wrench %.3g of m g (force) or m g a (torque)\n",
+        touch_m, b.contacts.size(), unheld, cr.world.stone_count(), largest);
+  }
+}
+
+// What the rest should satisfy and today does not (measured above: 7 of the 10 stones at rest
+// are not held by the contacts within the island's 1 nm margin, up to 0.30 of their weight's
+// moment; with every pair within 1 um counted as a contact, still 7, up to 0.026): every stone
+// at rest is held by its contacts. Disabled until the island lets gravity's torque move a
+// still member (docs/physics.md, "A still member stays still"; issue 15).
+TEST(WorldCrowd, DISABLED_EveryStoneAtRestIsHeldByItsContacts) {
+  Crowd cr;
+  const CrowdRecord r = run_crowd(cr, 20.0);
+  ASSERT_GT(r.rest_at, 0.0);
+  const BalanceResult b = static_balance(cr.world, kGravity, laws_of(config()), 1e-9);
+  for (std::size_t i = 0; i < cr.world.stone_count(); ++i) {
+    EXPECT_LE(b.force_residual[i], kHeldResidual) << "stone " << i;
+    EXPECT_LE(b.torque_residual[i], kHeldResidual) << "stone " << i;
+  }
 }
 
 }  // namespace
