@@ -66,7 +66,14 @@ inline vgtest::LensReference lens_of(const StoneFacts& f, const vg::RigidBodySta
 // unit n and equals it at the best n (for overlapping lenses, minus the penetration depth). Its
 // largest value is sought from a scan of directions (a Fibonacci sphere and the centre line),
 // refined by a pattern search on the sphere with shrinking steps.
-inline double pair_gap_bound(const vgtest::LensReference& a, const vgtest::LensReference& b) {
+// With the direction n (from a towards b) where it is largest: for touching lenses, their
+// contact normal.
+struct SupportGap {
+  double gap_m;
+  Eigen::Vector3d normal_world;
+};
+inline SupportGap pair_gap_bound_with_normal(const vgtest::LensReference& a,
+                                             const vgtest::LensReference& b) {
   const auto along = [&](const Eigen::Vector3d& n) { return n.dot(b.support(-n) - a.support(n)); };
   Eigen::Vector3d best_n = (b.x - a.x).normalized();
   double best = along(best_n);
@@ -89,7 +96,10 @@ inline double pair_gap_bound(const vgtest::LensReference& a, const vgtest::LensR
       }
     }
   }
-  return best;
+  return {best, best_n};
+}
+inline double pair_gap_bound(const vgtest::LensReference& a, const vgtest::LensReference& b) {
+  return pair_gap_bound_with_normal(a, b).gap_m;
 }
 
 // The smallest pair_gap_bound over every pair of stones whose balls of radius a (each lens lies

@@ -105,37 +105,15 @@ inline BalanceLaws laws_of(const vg::WorldConfig& c) {
           c.stone_material.spinning_friction_m};
 }
 
-// The contact normal between two lenses: the direction maximising the supporting-plane gap, found
-// as pair_gap_bound finds it (a scan and a pattern search); the point halfway between the two
-// supporting points.
+// The contact between two lenses: the normal where the supporting-plane gap is largest
+// (pair_gap_bound_with_normal), the point halfway between the two supporting points.
 inline BalanceContact pair_contact_reference(const vgtest::LensReference& a,
                                              const vgtest::LensReference& b) {
-  const auto along = [&](const Eigen::Vector3d& n) { return n.dot(b.support(-n) - a.support(n)); };
-  Eigen::Vector3d best_n = (b.x - a.x).normalized();
-  double best = along(best_n);
-  const int scan = 2000;
-  for (int k = 0; k < scan; ++k) {
-    const double z = 1.0 - (2.0 * k + 1.0) / scan, r = std::sqrt(1.0 - z * z);
-    const double phi = k * M_PI * (3.0 - std::sqrt(5.0));
-    const Eigen::Vector3d n(r * std::cos(phi), r * std::sin(phi), z);
-    const double f = along(n);
-    if (f > best) best = f, best_n = n;
-  }
-  for (double step = 0.05; step > 1e-13; step *= 0.5) {
-    for (bool improved = true; improved;) {
-      improved = false;
-      const Eigen::Vector3d u = best_n.unitOrthogonal(), v = best_n.cross(u);
-      for (const Eigen::Vector3d& d : {u, Eigen::Vector3d(-u), v, Eigen::Vector3d(-v)}) {
-        const Eigen::Vector3d n = (best_n + step * d).normalized();
-        const double f = along(n);
-        if (f > best) best = f, best_n = n, improved = true;
-      }
-    }
-  }
+  const SupportGap bound = pair_gap_bound_with_normal(a, b);
   BalanceContact c;
-  c.normal_world = best_n;
-  c.gap_m = best;
-  c.point_world = 0.5 * (a.support(best_n) + b.support(-best_n));
+  c.normal_world = bound.normal_world;
+  c.gap_m = bound.gap_m;
+  c.point_world = 0.5 * (a.support(c.normal_world) + b.support(-c.normal_world));
   return c;
 }
 
