@@ -17,6 +17,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <vector>
 
@@ -78,6 +79,10 @@ inline Eigen::VectorXd non_negative_least_squares(const Eigen::MatrixXd& A,
   }
   return x;
 }
+
+// A wrench left unheld (in units of m g, m g a) as large as this would move a stone faster than
+// the rest speed (1e-5 m/s) within the rest time (0.01 s): 1e-5 / (0.01 g) ~ 1e-4.
+constexpr double kHeldResidual = 1e-4;
 
 struct BalanceContact {
   std::size_t a = 0, b = 0;  // b receives +wrench, a -wrench; a = b: the board (on b only)
@@ -219,6 +224,28 @@ inline BalanceResult static_balance(const vg::World& world, const Eigen::Vector3
     }
   }
   return r;
+}
+
+// Prints "[ measured ] <what>: n of m stones at rest not held by their contacts within touch_m,
+// largest unheld wrench w" and returns n; with `checked`, only those stones (the others fixed
+// supports, as static_balance takes them).
+inline int print_unheld(const char* what, const vg::World& world, const Eigen::Vector3d& g_world,
+                        double touch_m = 1e-9, const std::vector<bool>& checked = {}) {
+  const BalanceResult b = static_balance(world, g_world, laws_of(world.config()), touch_m, checked);
+  int unheld = 0, counted = 0;
+  double largest = 0.0;
+  for (std::size_t i = 0; i < world.stone_count(); ++i) {
+    if (!checked.empty() && !checked[i]) continue;
+    ++counted;
+    const double residual = std::max(b.force_residual[i], b.torque_residual[i]);
+    largest = std::max(largest, residual);
+    unheld += residual > kHeldResidual;
+  }
+  std::printf(
+      "[ measured ] %s: %d of %d stones at rest not held by their contacts within %g m (%zu "
+      "contacts), largest unheld wrench %.3g of m g (or m g a)\n",
+      what, unheld, counted, touch_m, b.contacts.size(), largest);
+  return unheld;
 }
 
 }  // namespace worldtest

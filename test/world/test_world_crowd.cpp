@@ -25,10 +25,6 @@ namespace {
 using namespace worldtest;
 using Eigen::Vector3d;
 
-// A wrench left unheld (in units of m g, m g a) as large as this would move a stone faster than
-// the rest speed (1e-5 m/s) within the rest time (0.01 s): 1e-5 / (0.01 g) ~ 1e-4.
-constexpr double kHeldResidual = 1e-4;
-
 struct Crowd {
   vg::World world;
   std::vector<vg::StoneId> block;
@@ -207,20 +203,7 @@ TEST(WorldCrowd, AStoneThrownIntoABlockComesToRest) {
   // more generously, every pair within 1 um. Measured only: the island holds still members
   // where gravity's torque should move them (docs/physics.md, "A still member stays still"),
   // and DISABLED_EveryStoneAtRestIsHeldByItsContacts below asserts it for when that is fixed.
-  for (const double touch_m : {1e-9, 1e-6}) {
-    const BalanceResult b = static_balance(cr.world, kGravity, laws_of(config()), touch_m);
-    int unheld = 0;
-    double largest = 0.0;
-    for (std::size_t i = 0; i < cr.world.stone_count(); ++i) {
-      const double residual = std::max(b.force_residual[i], b.torque_residual[i]);
-      largest = std::max(largest, residual);
-      unheld += residual > kHeldResidual;
-    }
-    std::printf(
-        "[ measured ] contacts within %g m: %zu; %d of %zu stones not held by them, "
-        "largest unheld wrench %.3g of m g (force) or m g a (torque)\n",
-        touch_m, b.contacts.size(), unheld, cr.world.stone_count(), largest);
-  }
+  for (const double touch_m : {1e-9, 1e-6}) print_unheld("crowd", cr.world, kGravity, touch_m);
 }
 
 // What the rest should satisfy and today does not (measured above: 7 of the 10 stones at rest

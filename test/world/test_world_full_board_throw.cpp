@@ -160,21 +160,7 @@ TEST_P(WorldFullBoardThrow, WakesWhatItPushesNeverGainsEnergyNeverOverlapsAndRes
   // fixed supports (static_balance.h).
   std::vector<bool> moved(n, false);
   for (std::size_t i = 0; i < n; ++i) moved[i] = named[i] || i >= board;
-  const BalanceResult balance =
-      static_balance(world, kGravity, laws_of(world.config()), 1e-9, moved);
-  int checked = 0, unheld = 0;
-  double largest = 0.0;
-  for (std::size_t i = 0; i < n; ++i) {
-    if (!moved[i]) continue;
-    ++checked;
-    const double residual = std::max(balance.force_residual[i], balance.torque_residual[i]);
-    largest = std::max(largest, residual);
-    unheld += residual > 1e-4;
-  }
-  std::printf(
-      "[ measured ] %d of the %d stones that moved are not held by their contacts, largest "
-      "unheld wrench %.3g of m g or m g a\n",
-      unheld, checked, largest);
+  print_unheld("the stones that moved", world, kGravity, 1e-9, moved);
 }
 
 // Bounds on the stones woken: measured (see the run's printout: 4, 14, 10 and 59 woken) with
