@@ -200,7 +200,8 @@ TEST(WorldPairImpacts, RandomFlightsConserveMomentumNeverGainEnergyNorOverlap) {
   EXPECT_GE(w.gap, -1e-9);
   EXPECT_LE(runs.with_island.rise, 1e-14);  // the energy never rises, islands or not
   // Those with an island (a pair that ends touching): no overlap, angular momentum kept (the
-  // momentum: DISABLED_ test below). Before: overlap 4.3e-4 m, errors 4.5e-4 and 8.7e-5.
+  // momentum: RandomFlightsThatEndTouchingKeepMomentumToRoundOff below). Before: overlap 4.3e-4 m,
+  // errors 4.5e-4 and 8.7e-5.
   EXPECT_GE(runs.with_island.gap, -1e-9);
   EXPECT_LT(runs.with_island.angular, 1e-14);
 }
