@@ -621,6 +621,8 @@ void World::add_nonsmooth_work(const NonsmoothCounters& now, NonsmoothCounters& 
   counters_.nonsmooth_impulses += now.impulses - seen.impulses;
   counters_.nonsmooth_frictionless_impulses +=
       now.frictionless_impulses - seen.frictionless_impulses;
+  counters_.nonsmooth_energy_scalings += now.energy_guard_scalings - seen.energy_guard_scalings;
+  counters_.nonsmooth_holds += now.holds - seen.holds;
   counters_.contact_searches += now.separation_searches - seen.separation_searches;
   seen = now;
 }

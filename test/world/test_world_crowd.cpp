@@ -132,10 +132,12 @@ CrowdRecord run_crowd(Crowd& cr, double t_end) {
       "%zu events; %d of 9 block stones never named (bitwise still); largest energy rise %.3g of "
       "the energy brought in (%.3g J), energy lost %.3f of it; smallest gaps %.3g m (pairs), "
       "%.3g m (board); %ld pair impacts, %ld islands, %ld island sub-steps, %ld pair searches, "
-      "%ld gap checks, %ld passes, %ld island impulses (%ld frictionless)\n",
+      "%ld gap checks, %ld passes, %ld island impulses (%ld frictionless); the island's energy "
+      "guard scaled %ld sub-steps and held %ld\n",
       r.reached, r.rest_at, r.events, r.untouched, r.worst_rise, r.e_in, r.lost, r.worst_gap,
       r.worst_board, c.pair_impacts, c.islands_formed, c.nonsmooth_steps, c.pair_searches,
-      c.pair_gap_checks, c.stages, c.nonsmooth_impulses, c.nonsmooth_frictionless_impulses);
+      c.pair_gap_checks, c.stages, c.nonsmooth_impulses, c.nonsmooth_frictionless_impulses,
+      c.nonsmooth_energy_scalings, c.nonsmooth_holds);
   return r;
 }
 
@@ -172,6 +174,9 @@ TEST(WorldCrowd, AStoneThrownIntoABlockComesToRest) {
   const vg::WorldCounters& c = cr.world.counters();
   EXPECT_GT(c.nonsmooth_impulses, 10000);
   EXPECT_EQ(c.nonsmooth_frictionless_impulses, 0);
+  // The guard's scalings and holds are counted once per committed sub-step at most.
+  EXPECT_LE(c.nonsmooth_energy_scalings, c.nonsmooth_steps);
+  EXPECT_LE(c.nonsmooth_holds, c.nonsmooth_steps);
   // A stone at rest that leans on no other (its proven gap to each more than 1 um) rests on the
   // board as a lone stone can: G above its lowest point within l_r, so that the rolling couple
   // l_r m g holds the weight's moment about it. (Before 2026-11-29 the islands rested three of

@@ -19,6 +19,12 @@ struct WorldCounters {
   // Of nonsmooth_impulses, those whose slip direction the local Coulomb law did not find (taken
   // frictionless; contact/coulomb_plastic_impulse.h).
   long nonsmooth_frictionless_impulses = 0;
+  // Of nonsmooth_steps, those whose energy guard scaled the island's motion (its impulses made
+  // more kinetic energy than its poses released) and those whose touching members kept their
+  // previous poses, still (a lift not payable): where the islands take energy the contact laws
+  // would not (nonsmooth_island.h, step 4 and "A still member stays still").
+  long nonsmooth_energy_scalings = 0;
+  long nonsmooth_holds = 0;
   long events = 0;             // events reported
   long pair_searches = 0;      // stone-stone times of impact (pair_time_of_impact)
   long pair_search_steps = 0;  // their advancement and polishing steps
