@@ -58,6 +58,7 @@ set(VG_CORE_SOURCES
   src/world/nonsmooth_island_contacts.cpp
   src/world/nonsmooth_island_energy.cpp
   src/world/nonsmooth_island_sub_step.cpp
+  src/world/nonsmooth_island_joint.cpp
   src/world/island_impulses.cpp
   src/world/broad_phase.cpp
   src/world/flight_track.cpp

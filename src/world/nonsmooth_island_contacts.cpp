@@ -8,7 +8,10 @@
 #include <vector>
 
 #include "nonsmooth_island_impl.h"
+#include "virtual_go/contact/coulomb_plastic_impulse.h"
 #include "virtual_go/geometry/lens_pair_distance.h"
+#include "virtual_go/geometry/rotation.h"
+#include "virtual_go/world/island_impulses.h"
 #include "virtual_go/world/nonsmooth_island.h"
 
 namespace virtual_go {
@@ -21,6 +24,8 @@ constexpr double kCorrectionSlackM = 1e-15;
 constexpr double kGapToleranceM = 1e-12;
 constexpr int kMaxCorrections = 16;        // per member and sweep, board and table
 constexpr int kMaxProjectionSweeps = 100;  // then the touching members keep their poses
+// The joint solve's passes, each re-linearised at the poses the last one left.
+constexpr int kMaxJointPasses = 30;
 // A pair correction along n does not move a stone whose board contact normal makes a cosine
 // above this with the direction it would be pushed into the board.
 constexpr double kBlockedCosine = 1e-6;
@@ -125,8 +130,95 @@ NonsmoothIsland::Kept NonsmoothIsland::kept_totals(const std::vector<MemberConta
   return Kept::horizontal;
 }
 
+bool NonsmoothIsland::project_jointly(std::vector<RigidBodyState>& s,
+                                      std::vector<MemberContacts>& mc, bool commit, int& sweeps) {
+  const std::size_t n = s.size();
+  using Row = nonsmooth_island_detail::SolveRow;
+  std::vector<double> inverse_mass(n);
+  std::vector<Eigen::Matrix3d> inverse_inertia(n);
+  std::vector<Eigen::Vector3d> dx(n), dtheta(n);
+  for (int pass = 0; pass < kMaxJointPasses; ++pass) {
+    std::vector<Row> rows;
+    bool overlap = false;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!lattice_.active[i]) continue;
+      const MotionModel& model = members_[i].setup.model;
+      inverse_mass[i] = 1.0 / model.mass_properties().mass();
+      inverse_inertia[i] = model.inertia_world(s[i].orientation).inverse();
+      dx[i].setZero();
+      dtheta[i].setZero();
+    }
+    const auto add = [&](int a, int b, const Eigen::Vector3d& normal, const Eigen::Vector3d& point,
+                         double gap, double mu) {
+      Row r = nonsmooth_island_detail::make_row(a, b, normal, point, mu, s, inverse_mass,
+                                                inverse_inertia);
+      r.target_n = kCorrectionSlackM - gap;
+      rows.push_back(r);
+      if (gap < 0.0) overlap = true;
+    };
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!lattice_.active[i] || !members_[i].board_enabled) continue;
+      const LensPose pose = lens_pose(s[i]);
+      const BoardContact& box = board_box(i, pose);
+      if (box.lens.gap_m <= options_.contact_margin_m) {
+        add(-1, static_cast<int>(i), box.lens.normal_world, box.lens.point_world, box.lens.gap_m,
+            board_plastic_.friction);
+        rows.back().key = -1 - 2 * static_cast<long>(i);
+        rows.back().rolling_m = board_plastic_.rolling_resistance_m;
+        rows.back().spinning_m = board_plastic_.spinning_friction_m;
+      }
+      if (members_[i].board.table_gap(pose) <= options_.contact_margin_m) {
+        const BoardContact t = members_[i].board.table(pose);
+        add(-1, static_cast<int>(i), t.lens.normal_world, t.lens.point_world, t.lens.gap_m,
+            table_plastic_.friction);
+        rows.back().key = -2 - 2 * static_cast<long>(i);
+        rows.back().rolling_m = table_plastic_.rolling_resistance_m;
+        rows.back().spinning_m = table_plastic_.spinning_friction_m;
+      }
+    }
+    for (std::size_t a = 0; a < n; ++a) {
+      if (!lattice_.active[a]) continue;
+      for (std::size_t b = a + 1; b < n; ++b) {
+        if (!lattice_.active[b] ||
+            apart_by_bounds(members_[a].board, s[a], members_[b].board, s[b], 0.0)) {
+          continue;
+        }
+        const LensPose pa = lens_pose(s[a]), pb = lens_pose(s[b]);
+        if (apart_along_last_normal(a, pa, b, pb, options_.contact_margin_m)) continue;
+        const LensPairContact c = pair_contact(
+            members_[a].board.lens(), pa, members_[b].board.lens(), pb,
+            [&]() -> const LensPairContact& { return pair_distance(a, pa, b, pb, commit); });
+        if (c.gap_m > options_.contact_margin_m) continue;
+        add(static_cast<int>(a), static_cast<int>(b), c.normal_world,
+            0.5 * (c.point_a_world + c.point_b_world), c.gap_m, stone_plastic_.friction);
+        rows.back().key = 1 + static_cast<long>(a * n + b);
+      }
+    }
+    if (!overlap) return true;
+    ++sweeps;
+    if (pass == 0) nonsmooth_island_detail::load_warm(rows, warm_positions_);
+    nonsmooth_island_detail::solve_rows(rows, inverse_mass, inverse_inertia, dx, dtheta);
+    if (pass == 0 && commit) nonsmooth_island_detail::store_warm(rows, warm_positions_);
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!lattice_.active[i] || (dx[i].isZero(0.0) && dtheta[i].isZero(0.0))) continue;
+      s[i].position_world += dx[i];
+      s[i].orientation = (rotation_exp(dtheta[i]) * s[i].orientation).normalized();
+      mc[i].loaded = true;
+    }
+    if (commit) ++counters_.projections;
+  }
+  return false;
+}
+
 void NonsmoothIsland::project(std::vector<RigidBodyState>& s, std::vector<MemberContacts>& mc,
                               bool commit, int& sweeps) {
+  if (options_.joint_solve) {
+    sweeps = 0;
+    if (project_jointly(s, mc, commit, sweeps)) {
+      project_obstacles(s, mc, commit);
+      return;
+    }
+  }
   const std::size_t n = s.size();
   // The board normals each member lies on (within the margin after its board corrections).
   std::vector<int>& supports = projection_.supports;

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "nonsmooth_island_impl.h"
 #include "virtual_go/contact/coulomb_plastic_impulse.h"
 #include "virtual_go/contact/pair_impact.h"
 #include "virtual_go/contact/time_of_impact.h"
@@ -79,7 +80,9 @@ NonsmoothIsland::Step NonsmoothIsland::sub_step(const Lattice& lattice_from, dou
   compliances.reset(n, pairs.size());
   SweepSettled& settled = sweep_.settled;
   settled.reset(n, pairs.size());
-  for (; !hold && velocity_sweeps < options_.max_sweeps; ++velocity_sweeps) {
+  const bool joint_velocities = options_.joint_solve;
+  if (!hold && joint_velocities) velocities_jointly(s, out.contacts, pairs, commit);
+  for (; !hold && !joint_velocities && velocity_sweeps < options_.max_sweeps; ++velocity_sweeps) {
     bool acted = false;
     for (std::size_t i = 0; i < n; ++i) {
       if (board_impulses(i, s, out.contacts, board_sum, compliances, settled, commit)) {

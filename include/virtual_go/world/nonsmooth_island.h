@@ -119,6 +119,7 @@
 
 #include <cstddef>
 #include <limits>
+#include <map>
 #include <optional>
 #include <vector>
 
@@ -186,6 +187,14 @@ struct NonsmoothContactOptions {
   bool pair_impacts = true;
   // Two-body impacts between members per sub-step, at most (then the plastic sweeps go on).
   int max_pair_impacts = 10000;
+  // Under evaluation, off by default (docs/physics.md, "A joint solve with rotation"): step 2
+  // as one accumulated Gauss-Seidel solve over every board, table and pair contact, in the mass
+  // metric with rotation, Coulomb stick within mu and the rolling and spinning couples within
+  // l_r and l_s times the normal (the fall becomes rotation in the same sub-step, so a still
+  // member's start is paid for), and step 3's plastic impulses as the same solve on the
+  // velocities. The crowd of test_world_crowd then rests with every stone held by its contacts
+  // within 1 nm; five island and world test programs still fail with it on.
+  bool joint_solve = false;
 };
 
 // Step 3's plain Gauss-Seidel sweeps before a stone that a pair impulse would press into the
@@ -387,6 +396,13 @@ class NonsmoothIsland {
   // Sets the active members' momentum and angular momentum to the anchor's closed form at t_s
   // (a uniform velocity, then a rigid rotation about the centre of mass).
   void keep_free_totals(std::vector<RigidBodyState>& s, const FreeAnchor& anchor, double t_s) const;
+  // Step 2 with options_.joint_solve: false when overlaps remain after its passes (then the
+  // corrections below go on from where it left the poses).
+  // Step 3's plastic impulses with options_.joint_solve (after the pair impacts): one solve.
+  void velocities_jointly(std::vector<RigidBodyState>& s, std::vector<MemberContacts>& mc,
+                          const std::vector<PairContact>& pairs, bool commit);
+  bool project_jointly(std::vector<RigidBodyState>& s, std::vector<MemberContacts>& mc, bool commit,
+                       int& sweeps);
   void project(std::vector<RigidBodyState>& s, std::vector<MemberContacts>& mc, bool commit,
                int& sweeps);
   // lens_pair_distance of members a and b at these poses, from the memo when it has them.
@@ -495,6 +511,13 @@ class NonsmoothIsland {
   std::vector<IslandObstacle> obstacles_;
   std::vector<PairMemo> obstacle_memo_;  // members_.size() * obstacles_.size(), by a * m + o
   std::vector<char> obstacle_acted_;     // per obstacle, in the sub-step being computed
+  // The joint solve's last committed impulses per contact (key: nonsmooth_island_impl.h), for
+  // its positions and its velocities: each sub-step starts from them (a warm start).
+  struct WarmImpulse {
+    Eigen::Vector3d impulse_world = Eigen::Vector3d::Zero();
+    Eigen::Vector3d couple_world = Eigen::Vector3d::Zero();
+  };
+  std::map<long, WarmImpulse> warm_positions_, warm_velocities_;
   // The velocity stage's working storage, kept between sub-steps so that a sub-step allocates
   // nothing for it once grown (sub_step is not re-entered; every use starts with a reset).
   struct SweepScratch {
