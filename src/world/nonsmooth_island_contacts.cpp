@@ -180,7 +180,8 @@ bool NonsmoothIsland::project_jointly(std::vector<RigidBodyState>& s,
       if (!lattice_.active[a]) continue;
       for (std::size_t b = a + 1; b < n; ++b) {
         if (!lattice_.active[b] ||
-            apart_by_bounds(members_[a].board, s[a], members_[b].board, s[b], 0.0)) {
+            apart_by_bounds(members_[a].board, s[a], members_[b].board, s[b],
+                            options_.contact_margin_m)) {
           continue;
         }
         const LensPose pa = lens_pose(s[a]), pb = lens_pose(s[b]);

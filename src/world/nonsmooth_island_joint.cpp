@@ -41,9 +41,9 @@ SolveRow make_row(int a, int b, const Eigen::Vector3d& normal_world,
   return r;
 }
 
-void solve_rows(std::vector<SolveRow>& rows, const std::vector<double>& inverse_mass,
-                const std::vector<Eigen::Matrix3d>& inverse_inertia,
-                std::vector<Eigen::Vector3d>& dx, std::vector<Eigen::Vector3d>& dtheta) {
+int solve_rows(std::vector<SolveRow>& rows, const std::vector<double>& inverse_mass,
+               const std::vector<Eigen::Matrix3d>& inverse_inertia,
+               std::vector<Eigen::Vector3d>& dx, std::vector<Eigen::Vector3d>& dtheta) {
   const auto displacement = [&](const SolveRow& r) {
     Eigen::Vector3d u = r.u0 + dx[r.b] + dtheta[r.b].cross(r.rb);
     if (r.a >= 0) u -= dx[r.a] + dtheta[r.a].cross(r.ra);
@@ -73,7 +73,9 @@ void solve_rows(std::vector<SolveRow>& rows, const std::vector<double>& inverse_
     lever[r.b] = std::max(lever[r.b], r.rb.norm());
     if (r.a >= 0) lever[r.a] = std::max(lever[r.a], r.ra.norm());
   }
-  for (int it = 0; it < kMaxJointIterations; ++it) {
+  int it = 0;
+  while (it < kMaxJointIterations) {
+    ++it;
     for (SolveRow& r : rows) {
       const Eigen::Vector3d u = displacement(r);
       const double old_n = r.lambda_n;
@@ -124,15 +126,16 @@ void solve_rows(std::vector<SolveRow>& rows, const std::vector<double>& inverse_
     previous_dtheta = dtheta;
     if (moved <= kJointTolerance * scale) break;
   }
+  return it;
 }
 
 }  // namespace virtual_go::nonsmooth_island_detail
 
 namespace virtual_go {
 
-void NonsmoothIsland::velocities_jointly(std::vector<RigidBodyState>& s,
-                                         std::vector<MemberContacts>& mc,
-                                         const std::vector<PairContact>& pairs, bool commit) {
+int NonsmoothIsland::velocities_jointly(std::vector<RigidBodyState>& s,
+                                        std::vector<MemberContacts>& mc,
+                                        const std::vector<PairContact>& pairs, bool commit) {
   const std::size_t n = s.size();
   using nonsmooth_island_detail::SolveRow;
   std::vector<double> inverse_mass(n, 0.0);
@@ -181,7 +184,8 @@ void NonsmoothIsland::velocities_jointly(std::vector<RigidBodyState>& s,
     }
   }
   nonsmooth_island_detail::load_warm(rows, warm_velocities_);
-  nonsmooth_island_detail::solve_rows(rows, inverse_mass, inverse_inertia, dv, dw);
+  const int sweeps =
+      nonsmooth_island_detail::solve_rows(rows, inverse_mass, inverse_inertia, dv, dw);
   if (commit) nonsmooth_island_detail::store_warm(rows, warm_velocities_);
   for (std::size_t i = 0; i < n; ++i) {
     if (!lattice_.active[i] || (dv[i].isZero(0.0) && dw[i].isZero(0.0))) continue;
@@ -195,7 +199,15 @@ void NonsmoothIsland::velocities_jointly(std::vector<RigidBodyState>& s,
       obstacle_acted_[obstacle_of[r]] = 1;
     }
   }
-  if (commit) counters_.impulses += static_cast<long>(rows.size());
+  // The contacts that acted, counted as the sweeps count their impulses.
+  for (std::size_t r = 0; commit && r < rows.size(); ++r) {
+    const SolveRow& row = rows[r];
+    if (row.lambda_n == 0.0 && row.lambda_1 == 0.0 && row.lambda_2 == 0.0) continue;
+    ++counters_.impulses;
+    if (row.a >= 0) ++counters_.pair_impulses;
+    if (obstacle_of[r] != static_cast<std::size_t>(-1)) ++counters_.obstacle_impulses;
+  }
+  return sweeps;
 }
 
 }  // namespace virtual_go

@@ -80,8 +80,13 @@ NonsmoothIsland::Step NonsmoothIsland::sub_step(const Lattice& lattice_from, dou
   compliances.reset(n, pairs.size());
   SweepSettled& settled = sweep_.settled;
   settled.reset(n, pairs.size());
-  const bool joint_velocities = options_.joint_solve;
-  if (!hold && joint_velocities) velocities_jointly(s, out.contacts, pairs, commit);
+  const bool joint_velocities = options_.joint_solve && !free;
+  // Free of the board the sweeps below are exact (a free island keeps its totals in closed form,
+  // and a row in the air is the plastic cradle to round-off): the joint solve is for islands on
+  // the board.
+  if (!hold && joint_velocities && !free) {
+    velocity_sweeps = velocities_jointly(s, out.contacts, pairs, commit);
+  }
   for (; !hold && !joint_velocities && velocity_sweeps < options_.max_sweeps; ++velocity_sweeps) {
     bool acted = false;
     for (std::size_t i = 0; i < n; ++i) {

@@ -192,8 +192,9 @@ struct NonsmoothContactOptions {
   // metric with rotation, Coulomb stick within mu and the rolling and spinning couples within
   // l_r and l_s times the normal (the fall becomes rotation in the same sub-step, so a still
   // member's start is paid for), and step 3's plastic impulses as the same solve on the
-  // velocities. The crowd of test_world_crowd then rests with every stone held by its contacts
-  // within 1 nm; five island and world test programs still fail with it on.
+  // velocities (islands on the board; free ones keep the sweeps). The crowd of test_world_crowd
+  // then rests with every stone held by its contacts within 1 nm; three island and world test
+  // programs still fail with it on (docs/physics.md).
   bool joint_solve = false;
 };
 
@@ -399,8 +400,9 @@ class NonsmoothIsland {
   // Step 2 with options_.joint_solve: false when overlaps remain after its passes (then the
   // corrections below go on from where it left the poses).
   // Step 3's plastic impulses with options_.joint_solve (after the pair impacts): one solve.
-  void velocities_jointly(std::vector<RigidBodyState>& s, std::vector<MemberContacts>& mc,
-                          const std::vector<PairContact>& pairs, bool commit);
+  // Returns its Gauss-Seidel sweeps.
+  int velocities_jointly(std::vector<RigidBodyState>& s, std::vector<MemberContacts>& mc,
+                         const std::vector<PairContact>& pairs, bool commit);
   bool project_jointly(std::vector<RigidBodyState>& s, std::vector<MemberContacts>& mc, bool commit,
                        int& sweeps);
   void project(std::vector<RigidBodyState>& s, std::vector<MemberContacts>& mc, bool commit,
