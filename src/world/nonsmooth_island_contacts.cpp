@@ -179,9 +179,8 @@ bool NonsmoothIsland::project_jointly(std::vector<RigidBodyState>& s,
     for (std::size_t a = 0; a < n; ++a) {
       if (!lattice_.active[a]) continue;
       for (std::size_t b = a + 1; b < n; ++b) {
-        if (!lattice_.active[b] ||
-            apart_by_bounds(members_[a].board, s[a], members_[b].board, s[b],
-                            options_.contact_margin_m)) {
+        if (!lattice_.active[b] || apart_by_bounds(members_[a].board, s[a], members_[b].board, s[b],
+                                                   options_.contact_margin_m)) {
           continue;
         }
         const LensPose pa = lens_pose(s[a]), pb = lens_pose(s[b]);
@@ -194,6 +193,12 @@ bool NonsmoothIsland::project_jointly(std::vector<RigidBodyState>& s,
             0.5 * (c.point_a_world + c.point_b_world), c.gap_m, stone_plastic_.friction);
         rows.back().key = 1 + static_cast<long>(a * n + b);
       }
+    }
+    // Free of the board and the table, the corrections below keep a free island's totals
+    // exactly (they only translate, by inverse masses): the joint solve is for islands on the
+    // board.
+    if (pass == 0 && std::none_of(rows.begin(), rows.end(), [](const Row& r) { return r.a < 0; })) {
+      return false;
     }
     if (!overlap) return true;
     ++sweeps;
