@@ -8,10 +8,8 @@
 #include <vector>
 
 #include "nonsmooth_island_impl.h"
-#include "virtual_go/contact/coulomb_plastic_impulse.h"
 #include "virtual_go/geometry/lens_pair_distance.h"
 #include "virtual_go/geometry/rotation.h"
-#include "virtual_go/world/island_impulses.h"
 #include "virtual_go/world/nonsmooth_island.h"
 
 namespace virtual_go {

@@ -30,12 +30,6 @@ struct SolveRow {
   Eigen::Vector3d couple = Eigen::Vector3d::Zero();  // accumulated angular impulse (t1, t2, n)
   Eigen::Matrix3d k;                                 // compliance in (n, t1, t2)
 };
-// Projected Gauss-Seidel with accumulated impulses (each clamped as a whole: the normal at >= 0,
-// the tangential within mu lambda_n, each couple within l lambda_n), so that a later contact can
-// take back what an earlier one pushed: it converges to the joint answer, not a feasible point
-// above it (pushes only can lift an island above its start). dx, dtheta: each member's motion
-// (translation and rotation, or velocity and angular velocity) from the solve. Returns the
-// iterations (sweeps over the rows) it took.
 // A row at `point_world` between members a (-1: a fixed body) and b of `states`, with its axes
 // and its compliance (u0, target_n and the couples left to the caller).
 SolveRow make_row(int a, int b, const Eigen::Vector3d& normal_world,
@@ -68,6 +62,12 @@ void store_warm(const std::vector<SolveRow>& rows, Warm& warm) {
   }
 }
 
+// Projected Gauss-Seidel with accumulated impulses (each clamped as a whole: the normal at >= 0,
+// the tangential within mu lambda_n, each couple within l lambda_n), so that a later contact can
+// take back what an earlier one pushed: it converges to the joint answer, not a feasible point
+// above it (pushes only can lift an island above its start). dx, dtheta: each member's motion
+// (translation and rotation, or velocity and angular velocity) from the solve. Returns the
+// iterations (sweeps over the rows) it took.
 int solve_rows(std::vector<SolveRow>& rows, const std::vector<double>& inverse_mass,
                const std::vector<Eigen::Matrix3d>& inverse_inertia,
                std::vector<Eigen::Vector3d>& dx, std::vector<Eigen::Vector3d>& dtheta);

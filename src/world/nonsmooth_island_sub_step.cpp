@@ -84,7 +84,7 @@ NonsmoothIsland::Step NonsmoothIsland::sub_step(const Lattice& lattice_from, dou
   // Free of the board the sweeps below are exact (a free island keeps its totals in closed form,
   // and a row in the air is the plastic cradle to round-off): the joint solve is for islands on
   // the board.
-  if (!hold && joint_velocities && !free) {
+  if (!hold && joint_velocities) {
     velocity_sweeps = velocities_jointly(s, out.contacts, pairs, commit);
   }
   for (; !hold && !joint_velocities && velocity_sweeps < options_.max_sweeps; ++velocity_sweeps) {

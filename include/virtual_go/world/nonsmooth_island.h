@@ -397,13 +397,13 @@ class NonsmoothIsland {
   // Sets the active members' momentum and angular momentum to the anchor's closed form at t_s
   // (a uniform velocity, then a rigid rotation about the centre of mass).
   void keep_free_totals(std::vector<RigidBodyState>& s, const FreeAnchor& anchor, double t_s) const;
-  // Step 2 with options_.joint_solve: false when no member touches the board or the table (a
-  // free island: the corrections below, which keep its totals) or when overlaps remain after its
-  // passes (then the corrections below go on from where it left the poses).
   // Step 3's plastic impulses with options_.joint_solve (after the pair impacts): one solve.
   // Returns its Gauss-Seidel sweeps.
   int velocities_jointly(std::vector<RigidBodyState>& s, std::vector<MemberContacts>& mc,
                          const std::vector<PairContact>& pairs, bool commit);
+  // Step 2 with options_.joint_solve: false when no member touches the board or the table (a
+  // free island: the corrections below, which keep its totals) or when overlaps remain after its
+  // passes (then the corrections below go on from where it left the poses).
   bool project_jointly(std::vector<RigidBodyState>& s, std::vector<MemberContacts>& mc, bool commit,
                        int& sweeps);
   void project(std::vector<RigidBodyState>& s, std::vector<MemberContacts>& mc, bool commit,
