@@ -201,7 +201,7 @@ bool NonsmoothIsland::project_jointly(std::vector<RigidBodyState>& s,
     if (!overlap) return true;
     ++sweeps;
     if (pass == 0) nonsmooth_island_detail::load_warm(rows, warm_positions_);
-    nonsmooth_island_detail::solve_rows(rows, inverse_mass, inverse_inertia, dx, dtheta);
+    nonsmooth_island_detail::solve_rows(rows, dx, dtheta);
     if (pass == 0 && commit) nonsmooth_island_detail::store_warm(rows, warm_positions_);
     for (std::size_t i = 0; i < n; ++i) {
       if (!lattice_.active[i] || (dx[i].isZero(0.0) && dtheta[i].isZero(0.0))) continue;

@@ -29,6 +29,22 @@ struct SolveRow {
   double lambda_n = 0, lambda_1 = 0, lambda_2 = 0;   // accumulated
   Eigen::Vector3d couple = Eigen::Vector3d::Zero();  // accumulated angular impulse (t1, t2, n)
   Eigen::Matrix3d k;                                 // compliance in (n, t1, t2)
+  // What every iteration needs, computed once by make_row (the solve's cost is its iterations):
+  // per axis j of (n, t1, t2), each body's arm r x axis_j (a motion's part along axis_j from a
+  // rotation is its dot with the arm) and the rotation I^-1 (r x axis_j) a unit impulse along
+  // axis_j gives; per couple axis c of (t1, t2, n), the rotation I^-1 axis_c a unit couple gives
+  // and the inverse of the pair's compliance about it; the inverse masses; the normal's inverse
+  // compliance, the tangential block's, its inverse and eigen-decomposition. Zero for a fixed a.
+  Eigen::Vector3d arm_b[3], arm_a[3], turn_b[3], turn_a[3], couple_turn_b[3], couple_turn_a[3];
+  double inverse_mass_b = 0.0, inverse_mass_a = 0.0;
+  double inverse_k_n = 0.0;
+  Eigen::Matrix2d k_t = Eigen::Matrix2d::Zero(), inverse_k_t = Eigen::Matrix2d::Zero();
+  Eigen::Vector2d k_t_values = Eigen::Vector2d::Zero();  // k_t = basis diag(values) basis^T
+  Eigen::Matrix2d k_t_basis = Eigen::Matrix2d::Identity();
+  double inverse_couple_k[3] = {0.0, 0.0, 0.0};
+  Eigen::Vector3d u0_axes, w0_axes;  // u0 along (n, t1, t2) and w0 about (t1, t2, n): by solve_rows
+  const Eigen::Vector3d& axis(int j) const { return j == 0 ? normal : j == 1 ? t1 : t2; }
+  const Eigen::Vector3d& couple_axis(int c) const { return c == 0 ? t1 : c == 1 ? t2 : normal; }
 };
 // A row at `point_world` between members a (-1: a fixed body) and b of `states`, with its axes
 // and its compliance (u0, target_n and the couples left to the caller).
@@ -68,9 +84,8 @@ void store_warm(const std::vector<SolveRow>& rows, Warm& warm) {
 // above it (pushes only can lift an island above its start). dx, dtheta: each member's motion
 // (translation and rotation, or velocity and angular velocity) from the solve. Returns the
 // iterations (sweeps over the rows) it took.
-int solve_rows(std::vector<SolveRow>& rows, const std::vector<double>& inverse_mass,
-               const std::vector<Eigen::Matrix3d>& inverse_inertia,
-               std::vector<Eigen::Vector3d>& dx, std::vector<Eigen::Vector3d>& dtheta);
+int solve_rows(std::vector<SolveRow>& rows, std::vector<Eigen::Vector3d>& dx,
+               std::vector<Eigen::Vector3d>& dtheta);
 
 inline bool apart_by_bounds(const BoardDistance& a, const RigidBodyState& sa,
                             const BoardDistance& b, const RigidBodyState& sb, double margin_m) {
