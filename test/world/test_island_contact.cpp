@@ -159,6 +159,16 @@ vg::RigidBodyState flat(double x, double y, const Vector3d& v = Vector3d::Zero()
   return at(Vector3d(x, y, kC), Quaterniond::Identity(), v);
 }
 
+// run() until the island ends, every member of it at rest.
+vg::IslandOutcome run_to_rest(vg::NonsmoothIsland& island, Watch& w, double dt, double t_max) {
+  std::vector<vg::IslandMemberEnd> ends;
+  const vg::IslandOutcome o = run(island, w, dt, t_max, &ends);
+  EXPECT_TRUE(o.finished);
+  EXPECT_EQ(ends.size(), island.size());
+  for (const vg::IslandMemberEnd& e : ends) EXPECT_EQ(e.end, vg::NonsmoothEnd::rest) << e.member;
+  return o;
+}
+
 TEST(IslandContact, AStoneSetDownOnARestingStoneRestsExactlyOnIt) {
   // The upper stone's bottom cap on the lower's top cap, on the same axis: pole on pole, the
   // upper centre 2c above the lower's. An equilibrium, and a stable one (the upper centre is
@@ -169,11 +179,7 @@ TEST(IslandContact, AStoneSetDownOnARestingStoneRestsExactlyOnIt) {
                                                  at(Vector3d(0.05 + dx, 0.02, z_upper))};
   vg::NonsmoothIsland island = island_of(start);
   Watch w;
-  std::vector<vg::IslandMemberEnd> ends;
-  const vg::IslandOutcome o = run(island, w, 0.37e-4, 0.2, &ends);
-  ASSERT_TRUE(o.finished);
-  ASSERT_EQ(ends.size(), 2u);
-  for (const vg::IslandMemberEnd& e : ends) EXPECT_EQ(e.end, vg::NonsmoothEnd::rest);
+  const vg::IslandOutcome o = run_to_rest(island, w, 0.37e-4, 0.2);
   for (const vg::RigidBodyState& s : o.states) {
     EXPECT_EQ(s.velocity_world, Vector3d::Zero());
     EXPECT_EQ(s.angular_momentum_world, Vector3d::Zero());
@@ -761,11 +767,7 @@ TEST(IslandContact, WithTheJointSolveAStoneReleasedTiltedRocksToABalancedRestInT
   // plane model (AStoneHeldTiltedIsHandedToThePlaneModelInsteadOfRestingTilted).
   vg::NonsmoothIsland island = tilted_beside_flat(true);
   Watch w;
-  std::vector<vg::IslandMemberEnd> ends;
-  const vg::IslandOutcome o = run(island, w, 1e-3, 10.0, &ends);
-  ASSERT_TRUE(o.finished);
-  ASSERT_EQ(ends.size(), 2u);
-  for (const vg::IslandMemberEnd& e : ends) EXPECT_EQ(e.end, vg::NonsmoothEnd::rest) << e.member;
+  const vg::IslandOutcome o = run_to_rest(island, w, 1e-3, 10.0);
   const double l_r = config(0.5, 0.3).board_material.rolling_resistance_m;
   const double rest_tilt = tilt_of(o.states[0]);
   EXPECT_LE(kD * std::sin(rest_tilt), l_r * (1 + 1e-9));
