@@ -157,8 +157,9 @@ bool NonsmoothIsland::project_jointly(std::vector<RigidBodyState>& s,
     // Board and table rows without the rolling and spinning couples: those are laws of the
     // velocities (step 3's solve applies them). The projection is onto the motions the contacts
     // allow, and a wider set of motions only lowers the projected pose further, so step 2 still
-    // pays for step 3 (physics.md, "A joint solve with rotation"). With the couples here, saturated
-    // at l lambda_n in wedges, 4,600 of the crowd's solves reached the iteration cap; without, 1,000.
+    // pays for step 3 (physics.md, "A joint solve with rotation"). With the couples here (saturated
+    // at l lambda_n in wedges) 4,600 of the crowd's solves reached the iteration cap; without
+    // 1,000.
     for (std::size_t i = 0; i < n; ++i) {
       if (!lattice_.active[i] || !members_[i].board_enabled) continue;
       const LensPose pose = lens_pose(s[i]);
