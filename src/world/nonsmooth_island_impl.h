@@ -28,7 +28,6 @@ struct SolveRow {
   double rolling_m = 0.0, spinning_m = 0.0;          // couples at most l_r and l_s times the normal
   double lambda_n = 0, lambda_1 = 0, lambda_2 = 0;   // accumulated
   Eigen::Vector3d couple = Eigen::Vector3d::Zero();  // accumulated angular impulse (t1, t2, n)
-  Eigen::Matrix3d k;                                 // compliance in (n, t1, t2)
   // What every iteration needs, computed once by make_row (the solve's cost is its iterations):
   // per axis j of (n, t1, t2), each body's arm r x axis_j (a motion's part along axis_j from a
   // rotation is its dot with the arm) and the rotation I^-1 (r x axis_j) a unit impulse along

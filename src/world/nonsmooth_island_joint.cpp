@@ -40,9 +40,9 @@ SolveRow make_row(int a, int b, const Eigen::Vector3d& normal_world,
   if (a >= 0) k += contact_compliance(1.0 / inverse_mass[a], inverse_inertia[a], r.ra);
   Eigen::Matrix3d basis;
   basis << r.normal, r.t1, r.t2;
-  r.k = basis.transpose() * k * basis;
-  r.inverse_k_n = 1.0 / r.k(0, 0);
-  r.k_t = r.k.block<2, 2>(1, 1);
+  const Eigen::Matrix3d k_axes = basis.transpose() * k * basis;  // in (n, t1, t2)
+  r.inverse_k_n = 1.0 / k_axes(0, 0);
+  r.k_t = k_axes.block<2, 2>(1, 1);
   r.inverse_k_t = r.k_t.inverse();
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(r.k_t);
   r.k_t_values = eigen.eigenvalues();
