@@ -80,8 +80,9 @@ void store_warm(const std::vector<SolveRow>& rows, Warm& warm) {
 // Projected Gauss-Seidel with accumulated impulses (each clamped as a whole: the normal at >= 0,
 // the tangential within mu lambda_n, each couple within l lambda_n), so that a later contact can
 // take back what an earlier one pushed: it converges to the joint answer, not a feasible point
-// above it (pushes only can lift an island above its start). dx, dtheta: each member's motion
-// (translation and rotation, or velocity and angular velocity) from the solve. Returns the
+// above it (pushes only can lift an island above its start); accelerated by nonsmooth nonlinear
+// conjugate gradients (the sweeps' fixed points, each answer a sweep's). dx, dtheta: each member's
+// motion (translation and rotation, or velocity and angular velocity) from the solve. Returns the
 // iterations (sweeps over the rows) it took.
 int solve_rows(std::vector<SolveRow>& rows, std::vector<Eigen::Vector3d>& dx,
                std::vector<Eigen::Vector3d>& dtheta);
