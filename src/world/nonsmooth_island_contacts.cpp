@@ -135,6 +135,7 @@ bool NonsmoothIsland::project_jointly(std::vector<RigidBodyState>& s,
   std::vector<double> inverse_mass(n);
   std::vector<Eigen::Matrix3d> inverse_inertia(n);
   std::vector<Eigen::Vector3d> dx(n), dtheta(n);
+  double first_depth_m = 0.0;
   for (int pass = 0; pass < kMaxJointPasses; ++pass) {
     std::vector<Row> rows;
     bool overlap = false;
@@ -203,7 +204,14 @@ bool NonsmoothIsland::project_jointly(std::vector<RigidBodyState>& s,
     if (!overlap) return true;
     ++sweeps;
     if (pass == 0) nonsmooth_island_detail::load_warm(rows, warm_positions_);
-    nonsmooth_island_detail::solve_rows(rows, dx, dtheta);
+    // A later pass removes what the first one's linearisation left (rotations move the contact
+    // points to second order): it converges to the same tolerance of the first pass's depth, not
+    // of its own residual, which would have it start a full solve over for picometres (20 % of
+    // the cluster's position sweeps, measured in benchmark/many; the same rests in every test).
+    if (pass == 0) {
+      for (const Row& r : rows) first_depth_m = std::max(first_depth_m, std::abs(r.target_n));
+    }
+    nonsmooth_island_detail::solve_rows(rows, dx, dtheta, first_depth_m);
     if (pass == 0 && commit) nonsmooth_island_detail::store_warm(rows, warm_positions_);
     for (std::size_t i = 0; i < n; ++i) {
       if (!lattice_.active[i] || (dx[i].isZero(0.0) && dtheta[i].isZero(0.0))) continue;

@@ -83,9 +83,10 @@ void store_warm(const std::vector<SolveRow>& rows, Warm& warm) {
 // above it (pushes only can lift an island above its start); accelerated by nonsmooth nonlinear
 // conjugate gradients (the sweeps' fixed points, each answer a sweep's). dx, dtheta: each member's
 // motion (translation and rotation, or velocity and angular velocity) from the solve. Returns the
-// iterations (sweeps over the rows) it took.
+// iterations (sweeps over the rows) it took. It stops when a sweep moves no member by more than
+// 1e-9 of the scale: the largest of `scale`, the rows' targets and their contacts' speeds.
 int solve_rows(std::vector<SolveRow>& rows, std::vector<Eigen::Vector3d>& dx,
-               std::vector<Eigen::Vector3d>& dtheta);
+               std::vector<Eigen::Vector3d>& dtheta, double scale = 0.0);
 
 inline bool apart_by_bounds(const BoardDistance& a, const RigidBodyState& sa,
                             const BoardDistance& b, const RigidBodyState& sb, double margin_m) {

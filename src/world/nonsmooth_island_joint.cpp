@@ -182,9 +182,8 @@ void iterate(std::vector<SolveRow>& rows, const Motions& m) {
 }  // namespace
 
 int solve_rows(std::vector<SolveRow>& rows, std::vector<Eigen::Vector3d>& dx,
-               std::vector<Eigen::Vector3d>& dtheta) {
+               std::vector<Eigen::Vector3d>& dtheta, double scale) {
   const Motions m{dx, dtheta};
-  double scale = 0.0;
   for (SolveRow& r : rows) {
     scale = std::max({scale, std::abs(r.target_n), r.u0.norm()});
     r.u0_axes = Eigen::Vector3d(r.normal.dot(r.u0), r.t1.dot(r.u0), r.t2.dot(r.u0));
