@@ -37,6 +37,7 @@ struct Options {
   std::vector<int> counts = {1, 10, 100, 361};     // resting-board sizes
   std::string out = ".";
   double nonsmooth_step_s = 0.0;  // > 0: ours' island sub-step h (default otherwise)
+  bool joint_solve = false;       // ours with NonsmoothContactOptions::joint_solve
 };
 
 double median(std::vector<double> v) {
@@ -260,6 +261,7 @@ struct ClusterRun {
   // Over the steps that end within the first second (the block is struck and settles: ours
   // rests within it, the peers keep paying after it), ns per step.
   double cost_first_second_ns = NAN;
+  std::vector<std::pair<std::string, long>> work_counters;  // ManyMethod::work_counters
 };
 
 ClusterRun run_cluster(ManyMethod& m, const ManyScene& s, double dt) {
@@ -324,6 +326,7 @@ ClusterRun run_cluster(ManyMethod& m, const ManyScene& s, double dt) {
     r.off_board += m.sample(i).position_world.z() < 0.0 ? 1 : 0;
   }
   r.final_change = (prev - e0) / e_in;
+  r.work_counters = m.work_counters();
   r.cost_ns = cost / steps;
   if (steps_first_second > 0) r.cost_first_second_ns = cost_first_second / steps_first_second;
   r.failure = m.failure();
@@ -386,7 +389,7 @@ int run(const Options& o) {
   init_many_peers();
   std::vector<std::unique_ptr<ManyMethod>> methods;
   std::vector<std::unique_ptr<ManyMethod>> all;
-  all.push_back(make_ours_many(o.nonsmooth_step_s));
+  all.push_back(make_ours_many(o.nonsmooth_step_s, o.joint_solve));
   all.push_back(make_bullet_many());
   all.push_back(make_ode_many());
   all.push_back(make_mujoco_many());
@@ -607,6 +610,10 @@ int run(const Options& o) {
       csv.put(sec, cl.name, m->name(), dt, n, "cost_per_step_first_second_ns",
               r.cost_first_second_ns);
       csv.put(sec, cl.name, m->name(), dt, n, "off_board_at_end", r.off_board);
+      for (const auto& [name, value] : r.work_counters) {
+        csv.put(sec, cl.name, m->name(), dt, n, name, value);
+        std::cerr << "many_benchmark:   " << name << " " << value << "\n";
+      }
       md << "| " << dt_text(dt) << " | " << m->name()
          << (r.failure.empty() ? "" : " (" + r.failure + ")") << " | " << sci(r.max_rise_step)
          << " | " << sci(r.total_rise) << " | " << sci(r.final_change) << " | "
@@ -694,13 +701,16 @@ int main(int argc, char** argv) {
   limit_s << virtual_go::kNonsmoothLargestStepS;
   const std::string usage =
       "usage: many_benchmark [--quick] [--methods ours,bullet,ode,mujoco] [--counts 1,10,100,361] "
-      "[--out DIR] [--nonsmooth-step H_S]\n"
+      "[--out DIR] [--nonsmooth-step H_S] [--joint-solve]\n"
       "  The many-stone benchmark (issue 15): resting boards, two-stone collisions, a stone "
       "thrown\n"
       "  into a cluster, events against the number of stones. --out DIR (made if missing) gets\n"
       "  many_results.csv, many_tables.md, many_settings.md, many_cost.dat; --nonsmooth-step: the\n"
       "  island sub-step h in s, at most the core's verified limit and default, " +
-      limit_s.str() + " s (0: the\n  default). scripts/benchmark.sh --many-only runs it.\n";
+      limit_s.str() +
+      " s (0: the\n  default); --joint-solve: ours with the joint solve "
+      "(NonsmoothContactOptions::joint_solve,\n  off by default; its solve and iteration counts "
+      "go to the results). scripts/benchmark.sh\n  --many-only runs it.\n";
   vg_bench::Options o;
   try {
     for (int i = 1; i < argc; ++i) {
@@ -720,6 +730,8 @@ int main(int argc, char** argv) {
         o.out = argv[++i];
       } else if (a == "--nonsmooth-step" && i + 1 < argc) {
         o.nonsmooth_step_s = std::stod(argv[++i]);
+      } else if (a == "--joint-solve") {
+        o.joint_solve = true;
       } else {
         std::cerr << "many_benchmark: unknown or incomplete option '" << a << "'\n" << usage;
         return 2;

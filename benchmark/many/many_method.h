@@ -9,6 +9,7 @@
 #include <Eigen/Geometry>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "../contact/contact_method.h"
@@ -68,13 +69,16 @@ class ManyMethod {
   // Events the method reported since the reset (ours: impacts, contact changes, rests); -1: an
   // engine without events.
   virtual long events_reported() const { return -1; }
+  // Named work counters since the reset, for the results file (ours: the joint solve's, when on).
+  virtual std::vector<std::pair<std::string, long>> work_counters() const { return {}; }
   virtual std::vector<Setting> settings() const = 0;
   virtual std::string version() const = 0;
 };
 
 // nonsmooth_step_s > 0: ours with that island sub-step h (NonsmoothContactOptions::step_s)
-// instead of the default (many_benchmark --nonsmooth-step, to measure what h does).
-std::unique_ptr<ManyMethod> make_ours_many(double nonsmooth_step_s = 0.0);
+// instead of the default (many_benchmark --nonsmooth-step, to measure what h does); joint_solve:
+// with NonsmoothContactOptions::joint_solve on (many_benchmark --joint-solve; off by default).
+std::unique_ptr<ManyMethod> make_ours_many(double nonsmooth_step_s = 0.0, bool joint_solve = false);
 std::unique_ptr<ManyMethod> make_bullet_many();
 std::unique_ptr<ManyMethod> make_ode_many();
 std::unique_ptr<ManyMethod> make_mujoco_many();

@@ -16,7 +16,8 @@ namespace {
 
 class OursMany : public ManyMethod {
  public:
-  explicit OursMany(double nonsmooth_step_s) : nonsmooth_step_s_(nonsmooth_step_s) {}
+  OursMany(double nonsmooth_step_s, bool joint_solve)
+      : nonsmooth_step_s_(nonsmooth_step_s), joint_solve_(joint_solve) {}
   std::string name() const override { return "ours"; }
   bool is_peer() const override { return false; }
   bool has_sleep() const override { return true; }  // exact rest, not a threshold
@@ -47,6 +48,7 @@ class OursMany : public ManyMethod {
     config.stone_material = m;
     config.stone_contact = true;
     if (nonsmooth_step_s_ > 0.0) config.options.nonsmooth.step_s = nonsmooth_step_s_;
+    config.options.nonsmooth.joint_solve = joint_solve_;
     world_.reset();
     world_.emplace(config, std::vector<virtual_go::RigidBodyState>{}, 0.0);
     // Body 0 is the config's (the scene's black stone); body 1 the scene's white stone.
@@ -76,7 +78,9 @@ class OursMany : public ManyMethod {
          "(energetic e*, Coulomb friction through the impulse); a stone in contact or a "
          "resting partner: an island of the fixed-step nonsmooth scheme (Moreau-Jean, e = 0, "
          "h = " +
-             num(world_->config().options.nonsmooth.step_s) + " s)",
+             num(world_->config().options.nonsmooth.step_s) + " s" +
+             (joint_solve_ ? "; the joint solve, NonsmoothContactOptions::joint_solve, on" : "") +
+             ")",
          "docs/physics.md, \"Stone-stone contact in the world\""},
         {"rest",
          "exact: a stone set down flat rests at once; a resting stone is skipped by "
@@ -115,9 +119,17 @@ class OursMany : public ManyMethod {
            c.pair_searches + c.pair_search_steps + c.pair_gap_checks;
   }
   long events_reported() const override { return world_->counters().events; }
+  std::vector<std::pair<std::string, long>> work_counters() const override {
+    if (!joint_solve_) return {};
+    const virtual_go::WorldCounters& c = world_->counters();
+    return {{"joint_solves", c.nonsmooth_joint_solves},
+            {"joint_iterations", c.nonsmooth_joint_iterations},
+            {"joint_capped_solves", c.nonsmooth_joint_capped_solves}};
+  }
 
  private:
   double nonsmooth_step_s_ = 0.0;  // 0: the default
+  bool joint_solve_ = false;
   std::optional<virtual_go::World> world_;
   std::vector<virtual_go::WorldEvent> events_;
   std::vector<Setting> settings_;
@@ -127,8 +139,8 @@ class OursMany : public ManyMethod {
 
 }  // namespace
 
-std::unique_ptr<ManyMethod> make_ours_many(double nonsmooth_step_s) {
-  return std::make_unique<OursMany>(nonsmooth_step_s);
+std::unique_ptr<ManyMethod> make_ours_many(double nonsmooth_step_s, bool joint_solve) {
+  return std::make_unique<OursMany>(nonsmooth_step_s, joint_solve);
 }
 
 }  // namespace vg_bench

@@ -211,7 +211,8 @@ bool NonsmoothIsland::project_jointly(std::vector<RigidBodyState>& s,
     if (pass == 0) {
       for (const Row& r : rows) first_depth_m = std::max(first_depth_m, std::abs(r.target_n));
     }
-    nonsmooth_island_detail::solve_rows(rows, dx, dtheta, first_depth_m);
+    const int iterations = nonsmooth_island_detail::solve_rows(rows, dx, dtheta, first_depth_m);
+    if (commit) count_joint_solve(iterations);
     if (pass == 0 && commit) nonsmooth_island_detail::store_warm(rows, warm_positions_);
     for (std::size_t i = 0; i < n; ++i) {
       if (!lattice_.active[i] || (dx[i].isZero(0.0) && dtheta[i].isZero(0.0))) continue;

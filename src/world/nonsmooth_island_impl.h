@@ -85,6 +85,7 @@ void store_warm(const std::vector<SolveRow>& rows, Warm& warm) {
 // motion (translation and rotation, or velocity and angular velocity) from the solve. Returns the
 // iterations (sweeps over the rows) it took. It stops when a sweep moves no member by more than
 // 1e-9 of the scale: the largest of `scale`, the rows' targets and their contacts' speeds.
+constexpr int kMaxJointIterations = 1000;  // per solve
 int solve_rows(std::vector<SolveRow>& rows, std::vector<Eigen::Vector3d>& dx,
                std::vector<Eigen::Vector3d>& dtheta, double scale = 0.0);
 

@@ -14,9 +14,8 @@
 namespace virtual_go::nonsmooth_island_detail {
 namespace {
 
-// Gauss-Seidel iterations per solve, and the largest motion of a member over an iteration
-// (relative to the largest target or contact velocity) below which it stops.
-constexpr int kMaxJointIterations = 1000;
+// The largest motion of a member over an iteration (relative to the scale, solve_rows) below
+// which a solve stops (at kMaxJointIterations at the latest).
 constexpr double kJointTolerance = 1e-9;
 // Newton steps for a sliding contact's friction (it converges in a few; bisection guards it).
 constexpr int kMaxSlidingIterations = 60;
@@ -257,6 +256,12 @@ int solve_rows(std::vector<SolveRow>& rows, std::vector<Eigen::Vector3d>& dx,
 
 namespace virtual_go {
 
+void NonsmoothIsland::count_joint_solve(int iterations) {
+  ++counters_.joint_solves;
+  counters_.joint_iterations += iterations;
+  if (iterations >= nonsmooth_island_detail::kMaxJointIterations) ++counters_.joint_capped_solves;
+}
+
 int NonsmoothIsland::velocities_jointly(std::vector<RigidBodyState>& s,
                                         std::vector<MemberContacts>& mc,
                                         const std::vector<PairContact>& pairs, bool commit) {
@@ -309,7 +314,10 @@ int NonsmoothIsland::velocities_jointly(std::vector<RigidBodyState>& s,
   }
   nonsmooth_island_detail::load_warm(rows, warm_velocities_);
   const int sweeps = nonsmooth_island_detail::solve_rows(rows, dv, dw);
-  if (commit) nonsmooth_island_detail::store_warm(rows, warm_velocities_);
+  if (commit) {
+    nonsmooth_island_detail::store_warm(rows, warm_velocities_);
+    count_joint_solve(sweeps);
+  }
   for (std::size_t i = 0; i < n; ++i) {
     if (!lattice_.active[i] || (dv[i].isZero(0.0) && dw[i].isZero(0.0))) continue;
     const MotionModel& model = members_[i].setup.model;

@@ -623,6 +623,9 @@ void World::add_nonsmooth_work(const NonsmoothCounters& now, NonsmoothCounters& 
       now.frictionless_impulses - seen.frictionless_impulses;
   counters_.nonsmooth_energy_scalings += now.energy_guard_scalings - seen.energy_guard_scalings;
   counters_.nonsmooth_holds += now.holds - seen.holds;
+  counters_.nonsmooth_joint_solves += now.joint_solves - seen.joint_solves;
+  counters_.nonsmooth_joint_iterations += now.joint_iterations - seen.joint_iterations;
+  counters_.nonsmooth_joint_capped_solves += now.joint_capped_solves - seen.joint_capped_solves;
   counters_.contact_searches += now.separation_searches - seen.separation_searches;
   seen = now;
 }

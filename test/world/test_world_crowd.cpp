@@ -178,6 +178,7 @@ TEST(WorldCrowd, AStoneThrownIntoABlockComesToRest) {
   // The guard's scalings and holds are counted once per committed sub-step at most.
   EXPECT_LE(c.nonsmooth_energy_scalings, c.nonsmooth_steps);
   EXPECT_LE(c.nonsmooth_holds, c.nonsmooth_steps);
+  EXPECT_EQ(c.nonsmooth_joint_solves, 0);  // the joint solve is off by default
   // A stone at rest that leans on no other (its proven gap to each more than 1 um) rests on the
   // board as a lone stone can: G above its lowest point within l_r, so that the rolling couple
   // l_r m g holds the weight's moment about it. (Before 2026-11-29 the islands rested three of
@@ -246,6 +247,15 @@ TEST(WorldCrowd, WithTheJointSolveEveryStoneAtRestIsHeldByItsContacts) {
   EXPECT_GE(r.worst_gap, -1e-9);
   print_unheld("crowd, joint solve", cr.world, kGravity, 1e-9);
   expect_every_stone_held(cr.world);
+  // The solves converge: measured 2026-11-29, 45,954 solves in committed sub-steps, 28
+  // iterations each on average, 31 (0.07 %) stopped unconverged at the cap. Plain Gauss-Seidel,
+  // before the conjugate gradients: 47,841 solves, 79 iterations each, 654 (1.4 %) capped.
+  const vg::WorldCounters& c = cr.world.counters();
+  EXPECT_GT(c.nonsmooth_joint_solves, 10000);
+  EXPECT_LE(c.nonsmooth_joint_capped_solves * 200, c.nonsmooth_joint_solves);
+  std::printf("[ measured ] joint solves %ld, %ld iterations, %ld capped\n",
+              c.nonsmooth_joint_solves, c.nonsmooth_joint_iterations,
+              c.nonsmooth_joint_capped_solves);
 }
 
 }  // namespace

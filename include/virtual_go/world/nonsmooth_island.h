@@ -240,6 +240,12 @@ struct NonsmoothCounters {
                                    // (contact/coulomb_plastic_impulse.h: frictionless)
   long obstacle_projections = 0;   // of `projections`, those out of an obstacle
   long obstacle_wakes = 0;         // obstacles woken (IslandOutcome::woken), counted once each
+  // NonsmoothContactOptions::joint_solve, in committed sub-steps: its solves (step 2's passes and
+  // step 3), their Gauss-Seidel iterations (sweeps over the rows) and the solves that stopped at
+  // the iteration cap unconverged.
+  long joint_solves = 0;
+  long joint_iterations = 0;
+  long joint_capped_solves = 0;
 };
 
 // One member: its lens against the board (BoardDistance carries the lens geometry), its mass
@@ -399,6 +405,8 @@ class NonsmoothIsland {
   // Sets the active members' momentum and angular momentum to the anchor's closed form at t_s
   // (a uniform velocity, then a rigid rotation about the centre of mass).
   void keep_free_totals(std::vector<RigidBodyState>& s, const FreeAnchor& anchor, double t_s) const;
+  // A joint solve of a committed sub-step that took `iterations`, in the counters.
+  void count_joint_solve(int iterations);
   // Step 3's plastic impulses with options_.joint_solve (after the pair impacts): one solve.
   // Returns its Gauss-Seidel sweeps.
   int velocities_jointly(std::vector<RigidBodyState>& s, std::vector<MemberContacts>& mc,

@@ -25,6 +25,11 @@ struct WorldCounters {
   // would not (nonsmooth_island.h, step 4 and "A still member stays still").
   long nonsmooth_energy_scalings = 0;
   long nonsmooth_holds = 0;
+  // With NonsmoothContactOptions::joint_solve: its solves, their Gauss-Seidel iterations and the
+  // solves that stopped at the iteration cap (NonsmoothCounters).
+  long nonsmooth_joint_solves = 0;
+  long nonsmooth_joint_iterations = 0;
+  long nonsmooth_joint_capped_solves = 0;
   long events = 0;             // events reported
   long pair_searches = 0;      // stone-stone times of impact (pair_time_of_impact)
   long pair_search_steps = 0;  // their advancement and polishing steps
