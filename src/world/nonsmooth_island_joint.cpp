@@ -230,7 +230,8 @@ int solve_rows(std::vector<SolveRow>& rows, std::vector<Eigen::Vector3d>& dx,
     if (std::sqrt(moved) <= kJointTolerance * scale || it == kMaxJointIterations) break;
     const double beta = previous_change > 0.0 ? change / previous_change : 0.0;
     previous_change = change;
-    const double keep = beta > 1.0 ? 0.0 : beta;  // a restart when the change grew
+    // A restart when the change grew (or is not a number: nothing is carried over then).
+    const double keep = beta >= 0.0 && beta <= 1.0 ? beta : 0.0;
     for (std::size_t i = 0; i < rows.size(); ++i) {
       for (int j = 0; j < kComponents; ++j) {
         const double push = keep * direction[i][j];
