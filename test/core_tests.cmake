@@ -51,6 +51,7 @@ foreach(core_test
     world/test_island_contact
     world/test_island_convergence
     world/test_island_impulses
+    world/test_nonsmooth_island_joint
     world/test_broad_phase
     world/test_world
     world/test_world_edges

@@ -132,18 +132,15 @@ bool NonsmoothIsland::project_jointly(std::vector<RigidBodyState>& s,
                                       std::vector<MemberContacts>& mc, bool commit, int& sweeps) {
   const std::size_t n = s.size();
   using Row = nonsmooth_island_detail::SolveRow;
-  std::vector<double> inverse_mass(n);
-  std::vector<Eigen::Matrix3d> inverse_inertia(n);
+  std::vector<double> inverse_mass;
+  std::vector<Eigen::Matrix3d> inverse_inertia;
   std::vector<Eigen::Vector3d> dx(n), dtheta(n);
   double first_depth_m = 0.0;
   for (int pass = 0; pass < kMaxJointPasses; ++pass) {
     std::vector<Row> rows;
     bool overlap = false;
+    joint_inverses(s, inverse_mass, inverse_inertia);  // the poses move between passes
     for (std::size_t i = 0; i < n; ++i) {
-      if (!lattice_.active[i]) continue;
-      const MotionModel& model = members_[i].setup.model;
-      inverse_mass[i] = 1.0 / model.mass_properties().mass();
-      inverse_inertia[i] = model.inertia_world(s[i].orientation).inverse();
       dx[i].setZero();
       dtheta[i].setZero();
     }

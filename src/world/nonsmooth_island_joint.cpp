@@ -263,20 +263,28 @@ void NonsmoothIsland::count_joint_solve(int iterations) {
   if (iterations >= nonsmooth_island_detail::kMaxJointIterations) ++counters_.joint_capped_solves;
 }
 
-int NonsmoothIsland::velocities_jointly(std::vector<RigidBodyState>& s,
-                                        std::vector<MemberContacts>& mc,
-                                        const std::vector<PairContact>& pairs, bool commit) {
-  const std::size_t n = s.size();
-  using nonsmooth_island_detail::SolveRow;
-  std::vector<double> inverse_mass(n, 0.0);
-  std::vector<Eigen::Matrix3d> inverse_inertia(n, Eigen::Matrix3d::Zero());
-  std::vector<Eigen::Vector3d> dv(n, Eigen::Vector3d::Zero()), dw(n, Eigen::Vector3d::Zero());
-  for (std::size_t i = 0; i < n; ++i) {
+void NonsmoothIsland::joint_inverses(const std::vector<RigidBodyState>& s,
+                                     std::vector<double>& inverse_mass,
+                                     std::vector<Eigen::Matrix3d>& inverse_inertia) const {
+  inverse_mass.assign(s.size(), 0.0);
+  inverse_inertia.assign(s.size(), Eigen::Matrix3d::Zero());
+  for (std::size_t i = 0; i < s.size(); ++i) {
     if (!lattice_.active[i]) continue;
     const MotionModel& model = members_[i].setup.model;
     inverse_mass[i] = 1.0 / model.mass_properties().mass();
     inverse_inertia[i] = model.inertia_world(s[i].orientation).inverse();
   }
+}
+
+int NonsmoothIsland::velocities_jointly(std::vector<RigidBodyState>& s,
+                                        std::vector<MemberContacts>& mc,
+                                        const std::vector<PairContact>& pairs, bool commit) {
+  const std::size_t n = s.size();
+  using nonsmooth_island_detail::SolveRow;
+  std::vector<double> inverse_mass;
+  std::vector<Eigen::Matrix3d> inverse_inertia;
+  joint_inverses(s, inverse_mass, inverse_inertia);
+  std::vector<Eigen::Vector3d> dv(n, Eigen::Vector3d::Zero()), dw(n, Eigen::Vector3d::Zero());
   std::vector<SolveRow> rows;
   std::vector<std::size_t> obstacle_of;
   const auto add = [&](int a, int b, const Eigen::Vector3d& normal, const Eigen::Vector3d& point,

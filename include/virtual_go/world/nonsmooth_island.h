@@ -407,6 +407,10 @@ class NonsmoothIsland {
   void keep_free_totals(std::vector<RigidBodyState>& s, const FreeAnchor& anchor, double t_s) const;
   // A joint solve of a committed sub-step that took `iterations`, in the counters.
   void count_joint_solve(int iterations);
+  // The active members' inverse masses and world inverse inertias at poses `s`, for the joint
+  // solve's rows (zero for inactive members).
+  void joint_inverses(const std::vector<RigidBodyState>& s, std::vector<double>& inverse_mass,
+                      std::vector<Eigen::Matrix3d>& inverse_inertia) const;
   // Step 3's plastic impulses with options_.joint_solve (after the pair impacts): one solve.
   // Returns its Gauss-Seidel sweeps.
   int velocities_jointly(std::vector<RigidBodyState>& s, std::vector<MemberContacts>& mc,
