@@ -25,8 +25,9 @@ constexpr double kLeanGapM = 1e-6;
 // contact point within l_r plus this (m) balances (round-off of the witness point).
 constexpr double kAcrossGravityTolerance = 1e-12;
 constexpr double kBalanceToleranceM = 1e-12;
-// Bisections of a sample's growth back to the next lattice energy (from a bracket of width
-// 3/4 of its top: 50 halvings leave it to round-off).
+// A sample's growth back to the next lattice energy: at most this factor above 1 (more is not
+// round-off), and bisections of its bracket (of width 3/4 of its top: 50 leave it to round-off).
+constexpr double kLargestRoundOffGrowth = 1e-6;
 constexpr int kGrowthBisections = 50;
 
 ContactMaterial plastic(ContactMaterial m) {
@@ -420,8 +421,8 @@ IslandOutcome NonsmoothIsland::advance(double t_end_s, long max_steps) {
     rigid.reset();
     scaled = scale_kinetic_energy(partial.states, next_j, Kept::none);
   }
-  // Round-off can leave it ulps below next_j: grow it back as little as needed (by a millionth
-  // at most: more is not round-off). The growth is bracketed by quadrupling and then bisected, so
+  // Round-off can leave it ulps below next_j: grow it back as little as needed
+  // (kLargestRoundOffGrowth at most). The growth is bracketed by quadrupling and then bisected, so
   // that the sample ends within round-off above next_j: a sample above it by the quadrupling's
   // overshoot could lie above the next sample (14 ulps, measured with the joint solve).
   if (scaled && energy(partial.states, lattice_.active) < next_j) {
@@ -432,16 +433,18 @@ IslandOutcome NonsmoothIsland::advance(double t_end_s, long max_steps) {
       return energy(partial.states, lattice_.active);
     };
     double low = 0.0, high = 1e-15;
-    while (high < 1e-6 && grown(high) < next_j) {
+    bool reached = grown(high) >= next_j;
+    while (!reached && high < kLargestRoundOffGrowth) {
       low = high;
-      high *= 4.0;
+      high = std::min(4.0 * high, kLargestRoundOffGrowth);
+      reached = grown(high) >= next_j;
     }
-    for (int i = 0; i < kGrowthBisections && high < 1e-6; ++i) {
+    for (int i = 0; reached && i < kGrowthBisections; ++i) {
       const double middle = 0.5 * (low + high);
       if (middle <= low || middle >= high) break;
       (grown(middle) < next_j ? low : high) = middle;
     }
-    grown(high);
+    if (reached) grown(high);  // else it stays below next_j: the next lattice state (below)
   }
   const double e = energy(partial.states, lattice_.active);
   if (scaled && e >= next_j && allowed(e)) {

@@ -134,16 +134,14 @@ bool NonsmoothIsland::project_jointly(std::vector<RigidBodyState>& s,
   using Row = nonsmooth_island_detail::SolveRow;
   std::vector<double> inverse_mass;
   std::vector<Eigen::Matrix3d> inverse_inertia;
-  std::vector<Eigen::Vector3d> dx(n), dtheta(n);
+  std::vector<Eigen::Vector3d> dx, dtheta;
   double first_depth_m = 0.0;
   for (int pass = 0; pass < kMaxJointPasses; ++pass) {
     std::vector<Row> rows;
     bool overlap = false;
     joint_inverses(s, inverse_mass, inverse_inertia);  // the poses move between passes
-    for (std::size_t i = 0; i < n; ++i) {
-      dx[i].setZero();
-      dtheta[i].setZero();
-    }
+    dx.assign(n, Eigen::Vector3d::Zero());
+    dtheta.assign(n, Eigen::Vector3d::Zero());
     const auto add = [&](int a, int b, const Eigen::Vector3d& normal, const Eigen::Vector3d& point,
                          double gap, double mu) {
       Row r = nonsmooth_island_detail::make_row(a, b, normal, point, mu, s, inverse_mass,

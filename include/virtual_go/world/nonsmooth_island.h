@@ -189,14 +189,13 @@ struct NonsmoothContactOptions {
   int max_pair_impacts = 10000;
   // Under evaluation, off by default (docs/physics.md, "A joint solve with rotation"): step 2
   // as one accumulated Gauss-Seidel solve (accelerated by nonsmooth nonlinear conjugate
-  // gradients) over every board, table and pair contact, in the mass
-  // metric with rotation and Coulomb friction within mu (the fall becomes rotation in the same
-  // sub-step, so a still member's start is paid for), and step 3's plastic impulses as the same
-  // solve on the velocities, with the rolling and spinning couples within l_r and l_s times the
-  // normal (islands on the board; free ones keep the sweeps). The crowd of test_world_crowd then
-  // rests with every stone held by its contacts within 1 nm; two island and world test programs
-  // still fail with it on, and in piles of leaning stones it costs about 130 times the cheapest
-  // peer (docs/physics.md).
+  // gradients) over every board, table and pair contact, in the mass metric with rotation and
+  // Coulomb friction within mu (the fall becomes rotation in the same sub-step, so a still
+  // member's start is paid for), and step 3's plastic impulses as the same solve on the velocities,
+  // with the rolling and spinning couples within l_r and l_s times the normal (islands on the
+  // board; free ones keep the sweeps). The crowd of test_world_crowd then rests with every stone
+  // held by its contacts within 1 nm; two island and world test programs still fail with it on, and
+  // in piles of leaning stones it costs about 130 times the cheapest peer (docs/physics.md).
   bool joint_solve = false;
 };
 
