@@ -1,5 +1,6 @@
 // PlaneContact's integrated coordinates, its right-hand side, and the sliding directions slaved
 // to the motion near zero (plane_contact_laws.h).
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -107,6 +108,14 @@ void PlaneContactLaws::fold_spin(State& y, State* dydt) const {
 State PlaneContactLaws::error_scale(const State& y0, const State& y1) const {
   const double atol = options_.absolute_tolerance, rtol = options_.relative_tolerance;
   State scale = (atol + rtol * y0.cwiseAbs().cwiseMax(y1.cwiseAbs()).array()).matrix();
+  // The angular velocity's error against its length, as a vector's: the across-axis part of a
+  // precessing stone's omega turns with the precession, so each of its world components passes
+  // through zero twice a turn, where a component's own scale asked for atol (1e-14 rad/s) out of
+  // 20 rad/s. Measured against |omega|, the tossed stone takes a quarter fewer steps (21,720 ->
+  // 16,779 in the benchmark's toss); the horizontal velocity measured the same way gained 2 % more
+  // there and cost 4 % in the edge scenario, so it keeps its per-component scale.
+  const double omega = std::max(y0.segment<3>(kWx).norm(), y1.segment<3>(kWx).norm());
+  scale.segment<3>(kWx).setConstant(atol + rtol * omega);
   // psi restarts from 0 at every step: measure its error as an angle, as the quaternion's unit
   // components measure half the orientation's.
   scale[kPsi] = 2.0 * (atol + rtol);
