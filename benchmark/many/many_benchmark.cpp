@@ -38,6 +38,7 @@ struct Options {
   std::string out = ".";
   double nonsmooth_step_s = 0.0;  // > 0: ours' island sub-step h (default otherwise)
   bool joint_solve = false;       // ours with NonsmoothContactOptions::joint_solve
+  bool hold_check = true;         // ours with NonsmoothContactOptions::hold_check
 };
 
 double median(std::vector<double> v) {
@@ -389,7 +390,7 @@ int run(const Options& o) {
   init_many_peers();
   std::vector<std::unique_ptr<ManyMethod>> methods;
   std::vector<std::unique_ptr<ManyMethod>> all;
-  all.push_back(make_ours_many(o.nonsmooth_step_s, o.joint_solve));
+  all.push_back(make_ours_many(o.nonsmooth_step_s, o.joint_solve, o.hold_check));
   all.push_back(make_bullet_many());
   all.push_back(make_ode_many());
   all.push_back(make_mujoco_many());
@@ -701,7 +702,7 @@ int main(int argc, char** argv) {
   limit_s << virtual_go::kNonsmoothLargestStepS;
   const std::string usage =
       "usage: many_benchmark [--quick] [--methods ours,bullet,ode,mujoco] [--counts 1,10,100,361] "
-      "[--out DIR] [--nonsmooth-step H_S] [--joint-solve]\n"
+      "[--out DIR] [--nonsmooth-step H_S] [--joint-solve] [--no-hold-check]\n"
       "  The many-stone benchmark (issue 15): resting boards, two-stone collisions, a stone "
       "thrown\n"
       "  into a cluster, events against the number of stones. --out DIR (made if missing) gets\n"
@@ -709,8 +710,10 @@ int main(int argc, char** argv) {
       "  island sub-step h in s, at most the core's verified limit and default, " +
       limit_s.str() +
       " s (0: the\n  default); --joint-solve: ours with the joint solve "
-      "(NonsmoothContactOptions::joint_solve,\n  off by default; its solve and iteration counts "
-      "go to the results). scripts/benchmark.sh\n  --many-only runs it.\n";
+      "(NonsmoothContactOptions::joint_solve,\n  off by default); --no-hold-check: ours without "
+      "the islands' hold check\n  (NonsmoothContactOptions::hold_check, on by default). The joint "
+      "solve's counts and the\n  refused rests go to the results. scripts/benchmark.sh --many-only "
+      "runs it.\n";
   vg_bench::Options o;
   try {
     for (int i = 1; i < argc; ++i) {
@@ -732,6 +735,8 @@ int main(int argc, char** argv) {
         o.nonsmooth_step_s = std::stod(argv[++i]);
       } else if (a == "--joint-solve") {
         o.joint_solve = true;
+      } else if (a == "--no-hold-check") {
+        o.hold_check = false;
       } else {
         std::cerr << "many_benchmark: unknown or incomplete option '" << a << "'\n" << usage;
         return 2;

@@ -77,8 +77,10 @@ class ManyMethod {
 
 // nonsmooth_step_s > 0: ours with that island sub-step h (NonsmoothContactOptions::step_s)
 // instead of the default (many_benchmark --nonsmooth-step, to measure what h does); joint_solve:
-// with NonsmoothContactOptions::joint_solve on (many_benchmark --joint-solve; off by default).
-std::unique_ptr<ManyMethod> make_ours_many(double nonsmooth_step_s = 0.0, bool joint_solve = false);
+// with NonsmoothContactOptions::joint_solve on (many_benchmark --joint-solve; off by default);
+// hold_check: NonsmoothContactOptions::hold_check (many_benchmark --no-hold-check turns it off).
+std::unique_ptr<ManyMethod> make_ours_many(double nonsmooth_step_s = 0.0, bool joint_solve = false,
+                                           bool hold_check = true);
 std::unique_ptr<ManyMethod> make_bullet_many();
 std::unique_ptr<ManyMethod> make_ode_many();
 std::unique_ptr<ManyMethod> make_mujoco_many();

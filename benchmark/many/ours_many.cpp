@@ -16,8 +16,8 @@ namespace {
 
 class OursMany : public ManyMethod {
  public:
-  OursMany(double nonsmooth_step_s, bool joint_solve)
-      : nonsmooth_step_s_(nonsmooth_step_s), joint_solve_(joint_solve) {}
+  OursMany(double nonsmooth_step_s, bool joint_solve, bool hold_check)
+      : nonsmooth_step_s_(nonsmooth_step_s), joint_solve_(joint_solve), hold_check_(hold_check) {}
   std::string name() const override { return "ours"; }
   bool is_peer() const override { return false; }
   bool has_sleep() const override { return true; }  // exact rest, not a threshold
@@ -49,6 +49,7 @@ class OursMany : public ManyMethod {
     config.stone_contact = true;
     if (nonsmooth_step_s_ > 0.0) config.options.nonsmooth.step_s = nonsmooth_step_s_;
     config.options.nonsmooth.joint_solve = joint_solve_;
+    config.options.nonsmooth.hold_check = hold_check_;
     world_.reset();
     world_.emplace(config, std::vector<virtual_go::RigidBodyState>{}, 0.0);
     // Body 0 is the config's (the scene's black stone); body 1 the scene's white stone.
@@ -80,6 +81,9 @@ class OursMany : public ManyMethod {
          "h = " +
              num(world_->config().options.nonsmooth.step_s) + " s" +
              (joint_solve_ ? "; the joint solve, NonsmoothContactOptions::joint_solve, on" : "") +
+             (hold_check_ ? "; a rest the contacts cannot hold refused and the joint solve on "
+                            "from there (NonsmoothContactOptions::hold_check)"
+                          : "; the hold check, NonsmoothContactOptions::hold_check, off") +
              ")",
          "docs/physics.md, \"Stone-stone contact in the world\""},
         {"rest",
@@ -120,9 +124,9 @@ class OursMany : public ManyMethod {
   }
   long events_reported() const override { return world_->counters().events; }
   std::vector<std::pair<std::string, long>> work_counters() const override {
-    if (!joint_solve_) return {};
     const virtual_go::WorldCounters& c = world_->counters();
-    return {{"joint_solves", c.nonsmooth_joint_solves},
+    return {{"hold_failures", c.nonsmooth_hold_failures},
+            {"joint_solves", c.nonsmooth_joint_solves},
             {"joint_iterations", c.nonsmooth_joint_iterations},
             {"joint_capped_solves", c.nonsmooth_joint_capped_solves}};
   }
@@ -130,6 +134,7 @@ class OursMany : public ManyMethod {
  private:
   double nonsmooth_step_s_ = 0.0;  // 0: the default
   bool joint_solve_ = false;
+  bool hold_check_ = true;
   std::optional<virtual_go::World> world_;
   std::vector<virtual_go::WorldEvent> events_;
   std::vector<Setting> settings_;
@@ -139,8 +144,9 @@ class OursMany : public ManyMethod {
 
 }  // namespace
 
-std::unique_ptr<ManyMethod> make_ours_many(double nonsmooth_step_s, bool joint_solve) {
-  return std::make_unique<OursMany>(nonsmooth_step_s, joint_solve);
+std::unique_ptr<ManyMethod> make_ours_many(double nonsmooth_step_s, bool joint_solve,
+                                           bool hold_check) {
+  return std::make_unique<OursMany>(nonsmooth_step_s, joint_solve, hold_check);
 }
 
 }  // namespace vg_bench

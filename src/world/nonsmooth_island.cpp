@@ -190,19 +190,30 @@ NonsmoothIsland::Lattice NonsmoothIsland::next_lattice() {
     const MemberContacts& m = step.contacts[i];
     if (m.board + m.stones + m.obstacles == 0 || !calm_for_long(i)) all_rest = false;
   }
+  // Who rests here: everyone, or a member no other member is near, calm on the board.
+  std::vector<char> resting(n, 0);
+  bool to_check = false;  // a member of an island of two or more, or one leaning on an obstacle
   for (std::size_t i = 0; i < n; ++i) {
     if (!next.active[i] || leaving[i]) continue;
     const MemberContacts& m = step.contacts[i];
-    if (all_rest) {
+    resting[i] = all_rest || (m.near == 0 && m.board > 0 && calm_for_long(i));
+    if (resting[i] && (members_.size() > 1 || m.stones + m.obstacles > 0)) to_check = true;
+  }
+  // They rest only where their contacts hold them (options.hold_check); else nobody rests here
+  // and the joint solve takes the island on.
+  if (to_check && o.hold_check && !o.joint_solve && !held_at_rest(next, h, resting)) {
+    resting.assign(n, 0);
+    options_.joint_solve = true;  // from the next sub-step on
+    ++counters_.hold_failures;
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!next.active[i] || leaving[i]) continue;
+    const MemberContacts& m = step.contacts[i];
+    if (resting[i]) {
       leave(i, NonsmoothEnd::rest);
       continue;
     }
-    if (m.near > 0) continue;
-    if (m.board > 0 && calm_for_long(i)) {
-      leave(i, NonsmoothEnd::rest);
-      continue;
-    }
-    if (m.loaded) continue;
+    if (m.near > 0 || m.loaded) continue;
     // Separated: free of the board (exact time of impact) and out of every other member's
     // reach for separation_time_s (a bound: relative speed, rims' speeds, gravity).
     const RigidBodyState& s = next.states[i];
@@ -252,6 +263,34 @@ NonsmoothIsland::Lattice NonsmoothIsland::next_lattice() {
   }
   narrow_keep_margin(next);
   return next;
+}
+
+bool NonsmoothIsland::held_at_rest(const Lattice& l, double h_s,
+                                   const std::vector<char>& resting) {
+  Lattice trial = l;
+  // No energy cap: from rest the fall's potential energy is released in the same sub-step only
+  // by the joint solve's corrections, and the guard (step 4) would scale an unpaid start to
+  // zero, which is what is asked here.
+  trial.energy_j = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < trial.states.size(); ++i) {
+    trial.states[i].velocity_world.setZero();
+    trial.states[i].angular_momentum_world.setZero();
+  }
+  const bool joint = options_.joint_solve;
+  options_.joint_solve = true;
+  const Step step = sub_step(trial, h_s, false);
+  options_.joint_solve = joint;
+  for (std::size_t i = 0; i < step.states.size(); ++i) {
+    if (!resting[i]) continue;
+    const RigidBodyState& s = step.states[i];
+    const double limit = kHoldSpeedFraction * members_[i].setup.gravity_world.norm() * h_s;
+    const double rim_speed =
+        members_[i].setup.model.angular_velocity_world(s.orientation, s.angular_momentum_world)
+            .norm() *
+        members_[i].board.lens().half_width();
+    if (!(s.velocity_world.norm() <= limit) || !(rim_speed <= limit)) return false;
+  }
+  return true;
 }
 
 bool NonsmoothIsland::balanced_on_its_contact(std::size_t i, const RigidBodyState& s,

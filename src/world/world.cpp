@@ -570,6 +570,7 @@ void World::come_to_rest(std::size_t i, const RigidBodyState& state, double t_s,
   h.state_time_s = t_s;
   r.plane.reset();
   r.nonsmooth.reset();
+  r.joint_solve = false;  // also after its own fallback (an island dissolved by a command)
   WorldEvent& e = emit(i, t_s, WorldEventKind::rest, detail, state);
   if (config_.board_enabled) {
     const BoardContact c = body_at(i).board().nearest(state);
@@ -626,6 +627,7 @@ void World::add_nonsmooth_work(const NonsmoothCounters& now, NonsmoothCounters& 
   counters_.nonsmooth_joint_solves += now.joint_solves - seen.joint_solves;
   counters_.nonsmooth_joint_iterations += now.joint_iterations - seen.joint_iterations;
   counters_.nonsmooth_joint_capped_solves += now.joint_capped_solves - seen.joint_capped_solves;
+  counters_.nonsmooth_hold_failures += now.hold_failures - seen.hold_failures;
   counters_.contact_searches += now.separation_searches - seen.separation_searches;
   seen = now;
 }

@@ -631,6 +631,9 @@ void World::form_island(const std::vector<std::size_t>& seeds,
   // joins at (2 jumps and the margin), from the members' energy above each one's floor at
   // formation, narrowed as that energy falls (NonsmoothContactOptions::keep_s_per_mps).
   NonsmoothContactOptions options = config_.options.nonsmooth;
+  for (const std::size_t i : members) {
+    if (stones_.record(i).joint_solve) options.joint_solve = true;
+  }
   const double span_s = kJumpSubSteps * options.step_s;  // as jump_bound
   options.keep_s_per_mps = kKeepJoinFactor * 2.0 * span_s;
   options.keep_join_m = kKeepJoinFactor * kJoinGapM;
@@ -719,17 +722,21 @@ double World::advance_island(IslandRun& run, double t_s, long work_limit) {
   for (;;) {
     const IslandOutcome o = run.island.advance(t_s, std::max(1L, work_limit - counters_.work()));
     add_nonsmooth_work(run.island.counters(), run.seen);
+    const bool joint = run.island.options().joint_solve;
     for (std::size_t m = 0; m < run.members.size(); ++m) {
       if (!run.in[m]) continue;
-      StoneHot& h = stones_.hot(index_of(run.members[m]));
+      const std::size_t i = index_of(run.members[m]);
+      StoneHot& h = stones_.hot(i);
       h.state = o.states[m];
       h.state_time_s = o.time_s;
+      stones_.record(i).joint_solve = joint;
     }
     // Members leave as the single-stone fallback's stone does (advance_nonsmooth).
     for (const IslandMemberEnd& end : o.left) {
       run.in[end.member] = 0;
       const std::size_t i = index_of(run.members[end.member]);
       stones_.record(i).island.reset();
+      stones_.record(i).joint_solve = false;
       const RigidBodyState& s = o.states[end.member];
       switch (end.end) {
         case NonsmoothEnd::separated:

@@ -155,12 +155,13 @@ TEST_P(WorldFullBoardThrow, WakesWhatItPushesNeverGainsEnergyNeverOverlapsAndRes
       EXPECT_TRUE(world.state(i) == frozen[i]) << "stone " << i;
     }
   }
-  // Measured only (see test_world_crowd's DISABLED_EveryStoneAtRestIsHeldByItsContacts): the
-  // stones an event named, held by their contacts within the island's 1 nm margin, the others
-  // fixed supports (static_balance.h).
+  // The stones an event named are held by their contacts within the island's 1 nm margin, the
+  // others fixed supports (static_balance.h). Measured 2026-11-30: 0 unheld in all four, largest
+  // unheld wrench 1e-9 of m g (A10); without the islands' hold check (before) Q16 left 4 of 5,
+  // D4 8 of 15, K10 1 of 11 and A10 11 of 60 unheld.
   std::vector<bool> moved(n, false);
   for (std::size_t i = 0; i < n; ++i) moved[i] = named[i] || i >= board;
-  print_unheld("the stones that moved", world, kGravity, 1e-9, moved);
+  EXPECT_EQ(print_unheld("the stones that moved", world, kGravity, 1e-9, moved), 0);
 }
 
 // Bounds on the stones woken: measured (see the run's printout: 4, 14, 10 and 59 woken) with

@@ -46,6 +46,9 @@ struct StoneRecord {
   // A member of a stone-stone island (World's island list, by key): the island moves it, its
   // mode is nonsmooth_contact and `nonsmooth` is empty.
   std::optional<std::size_t> island;
+  // Its island's rest was refused (NonsmoothContactOptions::hold_check): the islands it is a
+  // member of use the joint solve until it leaves one.
+  bool joint_solve = false;
 };
 
 class StoneTable {

@@ -30,6 +30,9 @@ struct WorldCounters {
   long nonsmooth_joint_solves = 0;
   long nonsmooth_joint_iterations = 0;
   long nonsmooth_joint_capped_solves = 0;
+  // Rests of islands that NonsmoothContactOptions::hold_check refused (their members not held):
+  // the joint solve took over.
+  long nonsmooth_hold_failures = 0;
   long events = 0;             // events reported
   long pair_searches = 0;      // stone-stone times of impact (pair_time_of_impact)
   long pair_search_steps = 0;  // their advancement and polishing steps
