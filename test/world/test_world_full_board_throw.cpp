@@ -158,7 +158,7 @@ TEST_P(WorldFullBoardThrow, WakesWhatItPushesNeverGainsEnergyNeverOverlapsAndRes
   // The stones an event named are held by their contacts within the island's 1 nm margin, the
   // others fixed supports (static_balance.h). Measured 2026-11-30: 0 unheld in all four, largest
   // unheld wrench 1e-9 of m g (A10); without the islands' hold check (before) Q16 left 4 of 5,
-  // D4 8 of 15, K10 1 of 11 and A10 11 of 60 unheld.
+  // D4 11 of 15, K10 1 of 11 and A10 11 of 61 unheld.
   std::vector<bool> moved(n, false);
   for (std::size_t i = 0; i < n; ++i) moved[i] = named[i] || i >= board;
   EXPECT_EQ(print_unheld("the stones that moved", world, kGravity, 1e-9, moved), 0);
