@@ -143,10 +143,8 @@ NonsmoothIsland::Lattice NonsmoothIsland::next_lattice() {
   for (std::size_t i = 0; i < n; ++i) {
     if (!next.active[i]) continue;
     const RigidBodyState& s = next.states[i];
-    const Eigen::Vector3d omega =
-        members_[i].setup.model.angular_velocity_world(s.orientation, s.angular_momentum_world);
-    const double rim_speed = omega.norm() * members_[i].board.lens().half_width();
-    const bool calm = s.velocity_world.norm() <= o.rest_speed_mps && rim_speed <= o.rest_speed_mps;
+    const bool calm =
+        s.velocity_world.norm() <= o.rest_speed_mps && rim_speed_mps(i, s) <= o.rest_speed_mps;
     next.calm_steps[i] = calm ? next.calm_steps[i] + 1 : 0;
   }
   std::vector<char> leaving(n, 0);
@@ -221,15 +219,9 @@ NonsmoothIsland::Lattice NonsmoothIsland::next_lattice() {
     for (std::size_t j = 0; j < n && !reachable; ++j) {
       if (j == i || !next.active[j]) continue;
       const RigidBodyState& r = next.states[j];
-      auto rim = [&](std::size_t k, const RigidBodyState& x) {
-        return members_[k]
-                   .setup.model.angular_velocity_world(x.orientation, x.angular_momentum_world)
-                   .norm() *
-               members_[k].board.lens().half_width();
-      };
       const double ts = o.separation_time_s;
       const double reach = (s.velocity_world - r.velocity_world).norm() * ts +
-                           (rim(i, s) + rim(j, r)) * ts +
+                           (rim_speed_mps(i, s) + rim_speed_mps(j, r)) * ts +
                            members_[i].setup.gravity_world.norm() * ts * ts + o.contact_margin_m;
       const LensPose pi = lens_pose(s), pj = lens_pose(r);
       if (!apart_by_bounds(members_[i].board, s, members_[j].board, r, reach) &&
@@ -265,6 +257,13 @@ NonsmoothIsland::Lattice NonsmoothIsland::next_lattice() {
   return next;
 }
 
+double NonsmoothIsland::rim_speed_mps(std::size_t i, const RigidBodyState& s) const {
+  return members_[i]
+             .setup.model.angular_velocity_world(s.orientation, s.angular_momentum_world)
+             .norm() *
+         members_[i].board.lens().half_width();
+}
+
 bool NonsmoothIsland::held_at_rest(const Lattice& l, double h_s,
                                    const std::vector<char>& resting) {
   Lattice trial = l;
@@ -276,19 +275,19 @@ bool NonsmoothIsland::held_at_rest(const Lattice& l, double h_s,
     trial.states[i].velocity_world.setZero();
     trial.states[i].angular_momentum_world.setZero();
   }
-  const bool joint = options_.joint_solve;
+  // The trial with the joint solve, the option restored however sub_step returns.
+  struct Restore {
+    bool& option;
+    const bool value;
+    ~Restore() { option = value; }
+  } restore{options_.joint_solve, options_.joint_solve};
   options_.joint_solve = true;
   const Step step = sub_step(trial, h_s, false);
-  options_.joint_solve = joint;
   for (std::size_t i = 0; i < step.states.size(); ++i) {
     if (!resting[i]) continue;
     const RigidBodyState& s = step.states[i];
     const double limit = kHoldSpeedFraction * members_[i].setup.gravity_world.norm() * h_s;
-    const double rim_speed =
-        members_[i].setup.model.angular_velocity_world(s.orientation, s.angular_momentum_world)
-            .norm() *
-        members_[i].board.lens().half_width();
-    if (!(s.velocity_world.norm() <= limit) || !(rim_speed <= limit)) return false;
+    if (!(s.velocity_world.norm() <= limit) || !(rim_speed_mps(i, s) <= limit)) return false;
   }
   return true;
 }

@@ -405,6 +405,8 @@ class NonsmoothIsland {
   // Whether member i at s, with c its only contact, could rest there: on a face across gravity,
   // G no further than l_r from above the contact point (else true: not judged here).
   bool balanced_on_its_contact(std::size_t i, const RigidBodyState& s, const BoardContact& c) const;
+  // |omega| a of member i at s, m/s: its rim's speed bound from the rotation alone.
+  double rim_speed_mps(std::size_t i, const RigidBodyState& s) const;
   // NonsmoothContactOptions::hold_check at l, a lattice point where the members marked in
   // `resting` are about to rest (sub-step h_s): whether they stay still through a trial joint
   // sub-step with every member at rest there.
