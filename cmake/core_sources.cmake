@@ -56,6 +56,7 @@ set(VG_CORE_SOURCES
   src/world/nonsmooth_contact.cpp
   src/world/nonsmooth_island.cpp
   src/world/nonsmooth_island_contacts.cpp
+  src/world/nonsmooth_island_active_set.cpp
   src/world/nonsmooth_island_energy.cpp
   src/world/nonsmooth_island_sub_step.cpp
   src/world/nonsmooth_island_joint.cpp

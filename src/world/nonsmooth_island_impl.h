@@ -4,8 +4,10 @@
 //   nonsmooth_island_contacts.cpp  contact detection and the position corrections (step 2)
 //   nonsmooth_island_sub_step.cpp  one sub-step and its velocity stage (step 3)
 //   nonsmooth_island_joint.cpp     the joint solve (NonsmoothContactOptions::joint_solve)
+//   nonsmooth_island_active_set.cpp  its active-set step
 #pragma once
 
+#include <Eigen/Core>
 #include <algorithm>
 #include <vector>
 
@@ -77,6 +79,68 @@ void store_warm(const std::vector<SolveRow>& rows, Warm& warm) {
   }
 }
 
+// The largest motion of a member over an iteration (relative to the scale, solve_rows) below
+// which a solve stops (at kMaxJointIterations at the latest).
+constexpr double kJointTolerance = 1e-9;
+
+// A row's six components: 0 the normal, 1 and 2 the tangents (impulses, motions along the axes),
+// 3 to 5 the couples about t1, t2 and the normal (angular impulses, rotations about them).
+constexpr int kComponents = 6;
+
+// The members' motions (translation or velocity, rotation or angular velocity) from the solve.
+struct Motions {
+  std::vector<Eigen::Vector3d>& dx;
+  std::vector<Eigen::Vector3d>& dtheta;
+};
+
+// Row r's relative motion in component j (b against a). Inlined: it is most of an iteration.
+[[gnu::always_inline]] inline double component(const SolveRow& r, int j, const Motions& m) {
+  if (j < 3) {
+    double u = r.axis(j).dot(m.dx[r.b]) + r.arm_b[j].dot(m.dtheta[r.b]);
+    if (r.a >= 0) u -= r.axis(j).dot(m.dx[r.a]) + r.arm_a[j].dot(m.dtheta[r.a]);
+    return u + r.u0_axes[j];
+  }
+  const Eigen::Vector3d& axis = r.couple_axis(j - 3);
+  double w = axis.dot(m.dtheta[r.b]);
+  if (r.a >= 0) w -= axis.dot(m.dtheta[r.a]);
+  return w + r.w0_axes[j - 3];
+}
+
+// An impulse p in row r's component j, on b and (opposite) on a. Inlined as component() is.
+[[gnu::always_inline]] inline void apply(const SolveRow& r, int j, double p, const Motions& m) {
+  if (j < 3) {
+    m.dx[r.b] += (r.inverse_mass_b * p) * r.axis(j);
+    m.dtheta[r.b] += p * r.turn_b[j];
+    if (r.a >= 0) {
+      m.dx[r.a] -= (r.inverse_mass_a * p) * r.axis(j);
+      m.dtheta[r.a] -= p * r.turn_a[j];
+    }
+    return;
+  }
+  m.dtheta[r.b] += p * r.couple_turn_b[j - 3];
+  if (r.a >= 0) m.dtheta[r.a] -= p * r.couple_turn_a[j - 3];
+}
+
+// Row r's accumulated impulse in component j.
+inline double impulse(const SolveRow& r, int j) {
+  return j == 0 ? r.lambda_n : j == 1 ? r.lambda_1 : j == 2 ? r.lambda_2 : r.couple[j - 3];
+}
+inline void set_impulse(SolveRow& r, int j, double value) {
+  (j == 0 ? r.lambda_n : j == 1 ? r.lambda_1 : j == 2 ? r.lambda_2 : r.couple[j - 3]) = value;
+}
+// The largest couple in component j (3 to 5) per unit normal impulse.
+inline double couple_arm(const SolveRow& r, int j) { return j < 5 ? r.rolling_m : r.spinning_m; }
+
+// The active-set step of solve_rows (nonsmooth_island_active_set.cpp): from the contact states the
+// sweeps reached, the impulses that make them exact at once. False (nothing changed) where it does
+// not apply. active_set_pays: whether it costs less than the sweeps still to go, from each sweep's
+// largest motion so far (`history`) and the solve's bound on it (`tolerance`).
+constexpr int kFirstActiveSetStep = 20;  // sweeps before the first step (most solves end before)
+constexpr int kActiveSetEvery = 10;      // sweeps between steps
+bool active_set_step(std::vector<SolveRow>& rows, const Motions& m, double scale);
+bool active_set_pays(const std::vector<SolveRow>& rows, const std::vector<double>& history,
+                     double tolerance);
+
 // Projected Gauss-Seidel with accumulated impulses (each clamped as a whole: the normal at >= 0,
 // the tangential within mu lambda_n, each couple within l lambda_n), so that a later contact can
 // take back what an earlier one pushed: it converges to the joint answer, not a feasible point
@@ -84,10 +148,13 @@ void store_warm(const std::vector<SolveRow>& rows, Warm& warm) {
 // conjugate gradients (the sweeps' fixed points, each answer a sweep's). dx, dtheta: each member's
 // motion (translation and rotation, or velocity and angular velocity) from the solve. Returns the
 // iterations (sweeps over the rows) it took. It stops when a sweep moves no member by more than
-// 1e-9 of the scale: the largest of `scale`, the rows' targets and their contacts' speeds.
+// 1e-9 of the scale: the largest of `scale`, the rows' targets and their contacts' speeds. Where
+// the sweeps converge slowly it takes active-set steps (nonsmooth_island_joint.cpp; off with
+// `active_set_steps` false, for the tests' comparison).
 constexpr int kMaxJointIterations = 1000;  // per solve
 int solve_rows(std::vector<SolveRow>& rows, std::vector<Eigen::Vector3d>& dx,
-               std::vector<Eigen::Vector3d>& dtheta, double scale = 0.0);
+               std::vector<Eigen::Vector3d>& dtheta, double scale = 0.0,
+               bool active_set_steps = true);
 
 inline bool apart_by_bounds(const BoardDistance& a, const RigidBodyState& sa,
                             const BoardDistance& b, const RigidBodyState& sb, double margin_m) {

@@ -14,9 +14,6 @@
 namespace virtual_go::nonsmooth_island_detail {
 namespace {
 
-// The largest motion of a member over an iteration (relative to the scale, solve_rows) below
-// which a solve stops (at kMaxJointIterations at the latest).
-constexpr double kJointTolerance = 1e-9;
 // Newton steps for a sliding contact's friction (it converges in a few; bisection guards it).
 constexpr int kMaxSlidingIterations = 60;
 
@@ -67,54 +64,6 @@ SolveRow make_row(int a, int b, const Eigen::Vector3d& normal_world,
 }
 
 namespace {
-
-// A row's six components: 0 the normal, 1 and 2 the tangents (impulses, motions along the axes),
-// 3 to 5 the couples about t1, t2 and the normal (angular impulses, rotations about them).
-constexpr int kComponents = 6;
-
-// The members' motions (translation or velocity, rotation or angular velocity) from the solve.
-struct Motions {
-  std::vector<Eigen::Vector3d>& dx;
-  std::vector<Eigen::Vector3d>& dtheta;
-};
-
-// Row r's relative motion in component j (b against a). Inlined: it is most of an iteration.
-[[gnu::always_inline]] inline double component(const SolveRow& r, int j, const Motions& m) {
-  if (j < 3) {
-    double u = r.axis(j).dot(m.dx[r.b]) + r.arm_b[j].dot(m.dtheta[r.b]);
-    if (r.a >= 0) u -= r.axis(j).dot(m.dx[r.a]) + r.arm_a[j].dot(m.dtheta[r.a]);
-    return u + r.u0_axes[j];
-  }
-  const Eigen::Vector3d& axis = r.couple_axis(j - 3);
-  double w = axis.dot(m.dtheta[r.b]);
-  if (r.a >= 0) w -= axis.dot(m.dtheta[r.a]);
-  return w + r.w0_axes[j - 3];
-}
-
-// An impulse p in row r's component j, on b and (opposite) on a. Inlined as component() is.
-[[gnu::always_inline]] inline void apply(const SolveRow& r, int j, double p, const Motions& m) {
-  if (j < 3) {
-    m.dx[r.b] += (r.inverse_mass_b * p) * r.axis(j);
-    m.dtheta[r.b] += p * r.turn_b[j];
-    if (r.a >= 0) {
-      m.dx[r.a] -= (r.inverse_mass_a * p) * r.axis(j);
-      m.dtheta[r.a] -= p * r.turn_a[j];
-    }
-    return;
-  }
-  m.dtheta[r.b] += p * r.couple_turn_b[j - 3];
-  if (r.a >= 0) m.dtheta[r.a] -= p * r.couple_turn_a[j - 3];
-}
-
-// Row r's accumulated impulse in component j.
-double impulse(const SolveRow& r, int j) {
-  return j == 0 ? r.lambda_n : j == 1 ? r.lambda_1 : j == 2 ? r.lambda_2 : r.couple[j - 3];
-}
-void set_impulse(SolveRow& r, int j, double value) {
-  (j == 0 ? r.lambda_n : j == 1 ? r.lambda_1 : j == 2 ? r.lambda_2 : r.couple[j - 3]) = value;
-}
-// The largest couple in component j (3 to 5) per unit normal impulse.
-double couple_arm(const SolveRow& r, int j) { return j < 5 ? r.rolling_m : r.spinning_m; }
 
 // Coulomb's sliding friction on row r when the impulse that would stick it, `sticking`, lies
 // outside the disk of radius `limit` = mu lambda_n: the impulse on the circle against which the
@@ -181,7 +130,7 @@ void iterate(std::vector<SolveRow>& rows, const Motions& m) {
 }  // namespace
 
 int solve_rows(std::vector<SolveRow>& rows, std::vector<Eigen::Vector3d>& dx,
-               std::vector<Eigen::Vector3d>& dtheta, double scale) {
+               std::vector<Eigen::Vector3d>& dtheta, double scale, bool active_set_steps) {
   const Motions m{dx, dtheta};
   for (SolveRow& r : rows) {
     scale = std::max({scale, std::abs(r.target_n), r.u0.norm()});
@@ -210,9 +159,35 @@ int solve_rows(std::vector<SolveRow>& rows, std::vector<Eigen::Vector3d>& dx,
   std::vector<Eigen::Vector3d> direction_dx(dx.size(), Eigen::Vector3d::Zero());
   std::vector<Eigen::Vector3d> direction_dtheta(dx.size(), Eigen::Vector3d::Zero());
   double previous_change = 0.0;  // squared
+  // The active-set step's state before it, to go back to where the sweep after it moves the
+  // members more than the sweep before it did.
+  std::vector<std::array<double, kComponents>> saved(rows.size());
+  std::vector<Eigen::Vector3d> saved_dx, saved_dtheta;
+  bool stepped = false, stepping = active_set_steps;
+  double last_moved = 0.0;
+  std::vector<double> history;  // each sweep's largest motion of a member
   int it = 0;
   while (it < kMaxJointIterations) {
     ++it;
+    if (stepping && it > kFirstActiveSetStep && (it - kFirstActiveSetStep) % kActiveSetEvery == 0 &&
+        active_set_pays(rows, history, kJointTolerance * scale)) {
+      for (std::size_t i = 0; i < rows.size(); ++i) {
+        for (int j = 0; j < kComponents; ++j) saved[i][j] = impulse(rows[i], j);
+      }
+      saved_dx = dx;
+      saved_dtheta = dtheta;
+      stepped = active_set_step(rows, m, scale);
+      if (stepped) {
+        for (auto& d : direction) d.fill(0.0);
+        std::fill(direction_dx.begin(), direction_dx.end(), Eigen::Vector3d::Zero());
+        std::fill(direction_dtheta.begin(), direction_dtheta.end(), Eigen::Vector3d::Zero());
+        previous_change = 0.0;
+        previous_dx = dx;
+        previous_dtheta = dtheta;
+      } else {
+        stepping = false;
+      }
+    }
     for (std::size_t i = 0; i < rows.size(); ++i) {
       for (int j = 0; j < kComponents; ++j) before[i][j] = impulse(rows[i], j);
     }
@@ -227,6 +202,24 @@ int solve_rows(std::vector<SolveRow>& rows, std::vector<Eigen::Vector3d>& dx,
       moved = std::max({moved, step_x, step_theta});
       change += step_x + step_theta;
     }
+    if (stepped) {
+      stepped = false;
+      if (moved > last_moved) {
+        // Worse than the sweeps: back to where the step began, and no more steps in this solve.
+        for (std::size_t i = 0; i < rows.size(); ++i) {
+          for (int j = 0; j < kComponents; ++j) set_impulse(rows[i], j, saved[i][j]);
+        }
+        dx = saved_dx;
+        dtheta = saved_dtheta;
+        previous_dx = dx;
+        previous_dtheta = dtheta;
+        stepping = false;
+        if (it == kMaxJointIterations) break;
+        continue;
+      }
+    }
+    last_moved = moved;
+    history.push_back(std::sqrt(moved));
     if (std::sqrt(moved) <= kJointTolerance * scale || it == kMaxJointIterations) break;
     const double beta = previous_change > 0.0 ? change / previous_change : 0.0;
     previous_change = change;
