@@ -190,15 +190,16 @@ struct NonsmoothContactOptions {
   bool pair_impacts = true;
   // Two-body impacts between members per sub-step, at most (then the plastic sweeps go on).
   int max_pair_impacts = 10000;
-  // Under evaluation, off by default (docs/physics.md, "A joint solve with rotation"): step 2
-  // as one accumulated Gauss-Seidel solve (accelerated by nonsmooth nonlinear conjugate
-  // gradients) over every board, table and pair contact, in the mass metric with rotation and
-  // Coulomb friction within mu (the fall becomes rotation in the same sub-step, so a still
-  // member's start is paid for), and step 3's plastic impulses as the same solve on the velocities,
-  // with the rolling and spinning couples within l_r and l_s times the normal (islands on the
-  // board; free ones keep the sweeps). The crowd of test_world_crowd then rests with every stone
-  // held by its contacts within 1 nm; two island and world test programs still fail with it on, and
-  // in piles of leaning stones it costs about 130 times the cheapest peer (docs/physics.md).
+  // Off by default; the hold check below switches it on for an island whose rest is not held
+  // (docs/physics.md, "A joint solve with rotation", "The active-set step"): step 2 as one
+  // accumulated Gauss-Seidel solve (accelerated by nonsmooth nonlinear conjugate gradients and,
+  // where the sweeps crawl, by active-set steps) over every board, table and pair contact, in the
+  // mass metric with rotation and Coulomb friction within mu (the fall becomes rotation in the same
+  // sub-step, so a still member's start is paid for), and step 3's plastic impulses as the same
+  // solve on the velocities, with the rolling and spinning couples within l_r and l_s times the
+  // normal (islands on the board; free ones keep the sweeps). The crowd of test_world_crowd then
+  // rests with every stone held by its contacts within 1 nm; in the cluster of benchmark/many it
+  // costs about 10 times the cheapest peer per 1/60 s step.
   bool joint_solve = false;
   // Before members of an island of two or more (or one leaning on an obstacle) rest, check that
   // their contacts hold them: one trial sub-step of the joint solve from the island's poses with
