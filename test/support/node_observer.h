@@ -111,6 +111,14 @@ class NodeObserver {
     return buffer_.lookupTransform(world, stone, stamp);
   }
 
+  // The latest world -> stone transform the listener holds, at its own stamp (not interpolated).
+  std::optional<geometry_msgs::TransformStamped> latest_tf() {
+    const std::string world = info ? info->world_frame : "world";
+    const std::string stone = info ? info->stone_frame : "stone";
+    if (!buffer_.canTransform(world, stone, ros::Time(0))) return std::nullopt;
+    return buffer_.lookupTransform(world, stone, ros::Time(0));
+  }
+
   template <class Service>
   bool call(const std::string& name, Service& service) {
     const std::string full = node_ + "/" + name;
