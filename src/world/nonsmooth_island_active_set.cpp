@@ -28,8 +28,6 @@ constexpr int kActiveSetRounds = 8;
 // Strictly inside a bound by this fraction of it: free; else at the bound.
 constexpr double kInside = 1.0 - 1e-9;
 
-bool has_couples(const SolveRow& r) { return r.rolling_m > 0.0 || r.spinning_m > 0.0; }
-
 // A row's part in the active-set step.
 struct RowSet {
   bool pressing = false;
@@ -284,11 +282,14 @@ bool active_set_step(std::vector<SolveRow>& rows, const Motions& m, double scale
         }
         set.sticking = false;
       } else {
+        // Its ratio to the normal is the arm itself (a row that has just started to press has
+        // lambda_n = 0: the couple over it would be 0 / 0).
         const int c = blocked_component - 3;
-        const double limit = couple_arm(r, blocked_component) * r.lambda_n;
-        set_applied(r, blocked_component, r.couple[c] < 0.0 ? -limit : limit, m);
+        const double arm = r.couple[c] < 0.0 ? -couple_arm(r, blocked_component)
+                                             : couple_arm(r, blocked_component);
+        set_applied(r, blocked_component, arm * r.lambda_n, m);
         set.couple_free[static_cast<std::size_t>(c)] = false;
-        set.bound[c] = r.couple[c] / r.lambda_n;
+        set.bound[c] = arm;
       }
       continue;
     }

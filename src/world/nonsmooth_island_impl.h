@@ -130,6 +130,8 @@ inline void set_impulse(SolveRow& r, int j, double value) {
 }
 // The largest couple in component j (3 to 5) per unit normal impulse.
 inline double couple_arm(const SolveRow& r, int j) { return j < 5 ? r.rolling_m : r.spinning_m; }
+// Whether row r has rolling or spinning couples at all (board rows; pair rows have none).
+inline bool has_couples(const SolveRow& r) { return r.rolling_m > 0.0 || r.spinning_m > 0.0; }
 
 // The active-set step of solve_rows (nonsmooth_island_active_set.cpp): from the contact states the
 // sweeps reached, the impulses that make them exact at once. False (nothing changed) where it does

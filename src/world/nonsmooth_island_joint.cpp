@@ -117,7 +117,7 @@ void iterate(std::vector<SolveRow>& rows, const Motions& m) {
     r.lambda_2 = lt.y();
     apply(r, 1, lt.x() - old_t.x(), m);
     apply(r, 2, lt.y() - old_t.y(), m);
-    for (int j = 3; j < kComponents && (r.rolling_m > 0.0 || r.spinning_m > 0.0); ++j) {
+    for (int j = 3; j < kComponents && has_couples(r); ++j) {
       const double limit_j = couple_arm(r, j) * r.lambda_n;
       const double old_c = r.couple[j - 3];
       r.couple[j - 3] =
